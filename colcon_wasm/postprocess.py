@@ -137,9 +137,19 @@ def install_companions(executable):
     build_dir = executable.build_js.parent
     install_dir = executable.installed_js.parent
     files = [('js', executable.installed_js)]
+    glue_text = executable.build_js.read_text()
+    wasm_bytes = executable.companion(build_dir, '.wasm').read_bytes() \
+        if executable.companion(build_dir, '.wasm').is_file() else b''
     for suffix, role in COMPANIONS:
         source = executable.companion(build_dir, suffix)
-        if not source.is_file():
+        # a companion belongs to this link only when the output names it
+        # (a worker.js of an earlier pthread build may still be there)
+        referenced = {
+            'wasm': True,
+            'worker': (executable.name + suffix) in glue_text,
+            'map': (executable.name + suffix).encode() in wasm_bytes,
+        }[role]
+        if not source.is_file() or not referenced:
             if role == 'wasm':
                 raise ColconWasmError(
                     f"executable '{executable.name}': '{source}' is missing")

@@ -234,10 +234,12 @@ class WasmPackageSelection(PackageSelectionExtensionPoint):
         recipe = get_recipe(args)
         _check_workspace_not_empty(args, decorators)
         _prefer_workspace_copies(decorators)
+        left_out = set()
         for decorator in decorators:
-            if decorator.selected:
-                _select_one(decorator, recipe)
+            if decorator.selected and not _select_one(decorator, recipe):
+                left_out.add(decorator.descriptor.name)
         _check_skipped_dependencies(decorators, recipe)
+        _forget_left_out(decorators, left_out)
         _trim_unused_bundled(decorators)
         emscripten = getattr(args, '_colcon_wasm_emscripten', None)
         settings = WasmSettings(args)
@@ -276,22 +278,40 @@ def _prefer_workspace_copies(decorators):
 
 
 def _select_one(decorator, recipe):
+    """Unselect a package --wasm does not build; return if it stays."""
     pkg = decorator.descriptor
     reason = recipe.skip_reason(pkg.name)
     if reason:
         logger.info(f"Skipping '{pkg.name}' for --wasm: {reason}")
-        decorator.selected = False
     elif pkg.type in WASM_TYPES:
-        return
+        return True
     elif pkg.name in recipe.host_tools:
         logger.info(
             f"Building host tool '{pkg.name}' ({pkg.type}) with its usual "
             'task: it runs on the host at configure time')
+        return True
     else:
         logger.info(
             f"Skipping '{pkg.name}' for --wasm: a '{pkg.type}' package, only "
             'CMake packages are built to WebAssembly')
-        decorator.selected = False
+    decorator.selected = False
+    return False
+
+
+def _forget_left_out(decorators, left_out):
+    """
+    Remove the packages --wasm leaves out from everyone's dependencies.
+
+    colcon expects every dependency of a job to be installed (it sources
+    their environment); packages left out of a --wasm build never will be.
+    Packages the user unselected stay: colcon expects them built already.
+    """
+    if not left_out:
+        return
+    for decorator in decorators:
+        decorator.recursive_dependencies = [
+            d for d in decorator.recursive_dependencies
+            if str(d) not in left_out]
 
 
 def _dependency_names(pkg):
@@ -312,14 +332,14 @@ def _check_skipped_dependencies(decorators, recipe):
             reason = recipe.skip_reason(dep)
             if reason and dep not in allowed:
                 problems.append(
-                    f"package '{pkg.name}' depends on '{dep}', which "
-                    f'--wasm skips ({reason}); remove the dependency, '
-                    f'or allow dropping it with a recipe overlay '
-                    f"(--wasm-recipe) 'packages: {{{pkg.name}: "
-                    f"{{drop-depends: [{dep}]}}}}'")
+                    f"  package '{pkg.name}' depends on '{dep}', which "
+                    f'--wasm skips ({reason})')
     if problems:
         raise SystemExit(exit_message(ColconWasmError(
-            '; '.join(problems))))
+            f'{len(problems)} dependencies on packages that --wasm skips '
+            '(remove the dependency, or allow dropping it in a recipe '
+            "overlay given with --wasm-recipe: 'packages: {PKG: "
+            "{drop-depends: [DEP]}}'):\n" + '\n'.join(problems))))
 
 
 def _trim_unused_bundled(decorators):

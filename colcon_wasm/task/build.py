@@ -3,6 +3,7 @@
 
 """The `wasm.*` build task: the stock colcon task plus the wasm steps."""
 
+import json
 from pathlib import Path
 
 from colcon_core.logging import colcon_logger
@@ -20,6 +21,9 @@ logger = colcon_logger.getChild(__name__)
 
 """Folder (inside the build base) holding patched copies of sources."""
 PATCHED_SOURCES = Path('.colcon_wasm') / 'source'
+
+"""File in a package's build folder recording the toolchain settings."""
+SETTINGS_FILE = 'colcon_wasm_settings.json'
 
 
 def patched_source_folder(build_base, pkg_name):
@@ -57,6 +61,7 @@ class WasmBuildTask(TaskExtensionPoint):
         except ColconWasmError as e:
             logger.error(exit_message(e))
             return 1
+        self._clean_cache_on_new_settings(args, plan)
         args.cmake_args = cmake_arguments(
             emscripten=plan.emscripten, settings=plan.settings,
             install_base=self._install_base(args), rule=plan.rule,
@@ -97,6 +102,33 @@ class WasmBuildTask(TaskExtensionPoint):
             f"Building '{pkg.name}' from the patched copy '{source}' ("
             + ', '.join(p.name for p in patches) + ')')
         args.path = str(source)
+
+    def _clean_cache_on_new_settings(self, args, plan):
+        """
+        Configure from scratch when Emscripten or the flags changed.
+
+        The toolchain's flags initialize CMake's cached flags on the first
+        configure only, so a changed setting needs a fresh CMake cache.
+        """
+        settings = {
+            'emscripten': plan.emscripten.describe(),
+            'flags': plan.settings.describe([]),
+        }
+        path = Path(args.build_base) / SETTINGS_FILE
+        previous = None
+        if path.is_file():
+            try:
+                previous = json.loads(path.read_text())
+            except ValueError:
+                previous = None
+        if previous != settings:
+            if previous is not None:
+                logger.info(
+                    f"Toolchain settings of '{self.context.pkg.name}' changed"
+                    ': configuring from a fresh CMake cache')
+            args.cmake_clean_cache = True
+            path.parent.mkdir(parents=True, exist_ok=True)
+            path.write_text(json.dumps(settings, indent=2) + '\n')
 
     def _install_base(self, args):
         """Get the install base shared by all packages."""
