@@ -96,6 +96,8 @@ def cmake_arguments(*, emscripten, settings, install_base, rule,
     """
     on_off = {True: 'ON', False: 'OFF'}
     args = [
+        # PYTHON_EXECUTABLE etc. are unused by many packages: no warning
+        '--no-warn-unused-cli',
         f'-DCOLCON_WASM_EMSCRIPTEN_ROOT={emscripten.root}',
         f'-DCOLCON_WASM_EMSCRIPTEN_BIN={emscripten.bin_dir}',
         f'-DCOLCON_WASM_INSTALL_BASE={install_base}',
