@@ -236,7 +236,9 @@ class WasmPackageSelection(PackageSelectionExtensionPoint):
         _prefer_workspace_copies(decorators)
         left_out = set()
         for decorator in decorators:
-            if decorator.selected and not _select_one(decorator, recipe):
+            if decorator.selected:
+                _select_one(decorator, recipe)
+            if _never_built(decorator.descriptor, recipe):
                 left_out.add(decorator.descriptor.name)
         _check_skipped_dependencies(decorators, recipe)
         _forget_left_out(decorators, left_out)
@@ -278,24 +280,30 @@ def _prefer_workspace_copies(decorators):
 
 
 def _select_one(decorator, recipe):
-    """Unselect a package --wasm does not build; return if it stays."""
+    """Unselect a package --wasm does not build."""
     pkg = decorator.descriptor
     reason = recipe.skip_reason(pkg.name)
     if reason:
         logger.info(f"Skipping '{pkg.name}' for --wasm: {reason}")
     elif pkg.type in WASM_TYPES:
-        return True
+        return
     elif pkg.name in recipe.host_tools:
         logger.info(
             f"Building host tool '{pkg.name}' ({pkg.type}) with its usual "
             'task: it runs on the host at configure time')
-        return True
+        return
     else:
         logger.info(
             f"Skipping '{pkg.name}' for --wasm: a '{pkg.type}' package, only "
             'CMake packages are built to WebAssembly')
     decorator.selected = False
-    return False
+
+
+def _never_built(pkg, recipe):
+    """Check if --wasm never builds a package (whatever the selection)."""
+    if recipe.skip_reason(pkg.name):
+        return True
+    return pkg.type not in WASM_TYPES and pkg.name not in recipe.host_tools
 
 
 def _forget_left_out(decorators, left_out):
