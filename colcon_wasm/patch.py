@@ -185,7 +185,7 @@ def apply_file_diff(lines, diff, *, package, patch_name):
             raise PatchError(
                 f"package '{package}': patch '{patch_name}' hunk "
                 f'#{hunk.number} (patch line {hunk.line_in_patch}, '
-                f"{diff.path} near line {hunk.old_start}) does not apply: "
+                f'{diff.path} near line {hunk.old_start}) does not apply: '
                 f'the source has no line {first.rstrip()!r}; the package '
                 'version may not match the patch: fix the patch or its '
                 "'versions' range in the recipe")

@@ -178,8 +178,7 @@ def candidates(option=None, env=None):
     result = []
     if option:
         result.append(('--wasm-emscripten', option))
-    if env.get('EMSDK'):
-        result.append(('EMSDK', env['EMSDK']))
+    result.append(('EMSDK', env.get('EMSDK') or None))
     emcc = shutil.which('emcc', path=env.get('PATH'))
     result.append(('emcc on PATH', emcc))
     result.append(('Debian', str(DEBIAN_ROOT)))
@@ -244,7 +243,7 @@ def find_emscripten(option=None, env=None):
             needed = '.'.join(str(v) for v in MINIMUM_VERSION)
             found_v = '.'.join(str(v) for v in version)
             raise ColconWasmError(
-                f'Emscripten {found_v} at \'{root}\' ({source}) is too old, '
+                f"Emscripten {found_v} at '{root}' ({source}) is too old, "
                 f'need {needed} or newer; ' + INSTALL_HINT)
         return Emscripten(
             root=root, bin_dir=bin_dir, version=version, source=source)

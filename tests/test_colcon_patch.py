@@ -44,7 +44,7 @@ def test_failing_patch_is_a_clear_error(tmp_path):
     assert result.returncode != 0
     assert ("package 'bad_patch_pkg': patch '0001-does-not-match.patch' "
             'hunk #1') in result.stdout
-    assert "main.cpp near line 1) does not apply" in result.stdout
+    assert 'main.cpp near line 1) does not apply' in result.stdout
     assert "the source has no line '  return 1;'" in result.stdout
     assert tree_digest(ws / 'src') == before
     source_copies = ws / 'build_wasm' / '.colcon_wasm' / 'source'

@@ -14,7 +14,6 @@ import re
 
 from colcon_wasm.error import ColconWasmError
 from colcon_wasm.recipe.yaml_lines import LineDict
-from colcon_wasm.recipe.yaml_lines import LineList
 from packaging.specifiers import InvalidSpecifier
 from packaging.specifiers import SpecifierSet
 
