@@ -44,6 +44,11 @@ EXTRA_PACKAGES = {'humble_probe': REPO / 'tests' / 'fixtures' / 'humble_probe'}
 _INPUT_FOLDERS = ('colcon_wasm', 'recipes', 'toolchains', 'patches',
                   'templates', 'packages')
 
+"""colcon-wasm files that do not change what a build produces."""
+_NOT_INPUTS = ('colcon_wasm/cli/', 'colcon_wasm/blasm.py',
+               'colcon_wasm/doctor.py', 'recipes/schema.md',
+               'recipes/humble.repos')
+
 
 def humble_snapshot():
     """Get the Humble snapshot folder ($COLCON_WASM_HUMBLE)."""
@@ -86,9 +91,14 @@ def _file_digest(path):
 
 def _tree_digest(digest, folder):
     for path in sorted(Path(folder).rglob('*')):
-        if path.is_file() and '__pycache__' not in path.parts:
-            digest.update(path.relative_to(REPO).as_posix().encode())
-            digest.update(path.read_bytes())
+        if not path.is_file() or '__pycache__' in path.parts:
+            continue
+        name = path.relative_to(REPO).as_posix() \
+            if REPO in path.parents else path.name
+        if name.startswith(_NOT_INPUTS):
+            continue
+        digest.update(name.encode())
+        digest.update(path.read_bytes())
 
 
 def _emscripten_version():

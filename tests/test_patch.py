@@ -102,7 +102,7 @@ def test_patched_copy_is_atomic(tmp_path):
     assert tree_digest(dest) == copy_digest
     # a failing patch leaves the previous copy and no staging folder
     bad = tmp_path / 'bad.patch'
-    bad.write_text(PATCH.replace('-two', '-deux'))
+    bad.write_text(PATCH.replace('-two\n+TWO', '-deux\n+DEUX'))
     with pytest.raises(PatchError):
         prepare_patched_source(src, dest, [good, bad], package='pkg')
     assert tree_digest(dest) == copy_digest
