@@ -63,7 +63,7 @@ class Loader:
     def _find_package(self, name, where):
         if self.install_space is None:
             raise LaunchError(
-                "$(find-pkg-share {}) needs an install space (--install-base)".format(name),
+                '$(find-pkg-share {}) needs an install space (--install-base)'.format(name),
                 *where)
         try:
             return self.install_space.find_package_prefix(name)

@@ -108,7 +108,7 @@ class LaunchPlan:
     """The processes of one launch, labelled ``exe-N`` like ``ros2 launch``."""
 
     def __init__(self, processes=(), arguments=None):
-        """Number the processes with one counter, as launch's ExecuteProcess does."""
+        """Keep the processes and label them ``exe-N`` with one counter, as launch does."""
         self.processes = list(processes)
         self.arguments = dict(arguments or {})
         for index, process in enumerate(self.processes, start=1):

@@ -1,7 +1,7 @@
 # Copyright 2026 colcon-wasm contributors
 # Licensed under the Apache License, Version 2.0
 
-"""The ``$(...)`` substitutions of ROS 2 XML and YAML launch files.
+r"""The ``$(...)`` substitutions of ROS 2 XML and YAML launch files.
 
 Follows the grammar of ``launch/frontend/grammar.lark`` (Humble): text with
 ``$(name arg arg ...)``, arguments separated by one space, quoted with ``'`` or
@@ -158,7 +158,7 @@ def _truthy(value, name, where):
     if lowered in ('false', '0'):
         return False
     raise LaunchError(
-        "$({}) expects true/false or 1/0, got {!r}".format(name, value), *where)
+        '$({}) expects true/false or 1/0, got {!r}'.format(name, value), *where)
 
 
 def _expect(name, args, counts, where):
