@@ -112,7 +112,8 @@ async function main() {
     views.actions.setCount(model.actions.length);
     views.parameters.setCount(model.nodes.length);
   });
-  show((location.hash || '#topics').slice(1) in views ? location.hash.slice(1) : 'topics');
+  const wanted = location.hash.slice(1);
+  show(wanted in views ? wanted : 'topics');
 
   if (!window.crossOriginIsolated) {
     banners.append(isolationBanner());

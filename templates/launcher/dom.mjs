@@ -9,8 +9,8 @@
  * Children may be strings, nodes, arrays, or null (skipped).
  */
 export function h(spec, attributes = {}, ...children) {
-  const [tagAndId, ...classes] = spec.split('.');
-  const [tag, id] = tagAndId.split('#');
+  const [withoutId, id] = spec.split('#');
+  const [tag, ...classes] = withoutId.split('.');
   const el = document.createElement(tag || 'div');
   if (id) el.id = id;
   if (classes.length) el.className = classes.join(' ');

@@ -5,7 +5,6 @@
 // the live graph, and the tools process (echo, publish, call) — every view
 // goes through here, so the Runtime API is used in this file only.
 
-import { Runtime } from '/wasm_js/index.mjs';
 import { TypeRegistry } from '/wasm_js/cdr.mjs';
 import { graphModel } from '/wasm_js/tools/graph.mjs';
 
@@ -48,6 +47,7 @@ export class Session {
 
   /** Start the Runtime, the tools process and load the type descriptions. */
   async start() {
+    const { Runtime } = await import(this.workspace.runtime);
     const [runtime, registry] = await Promise.all([
       Runtime.create({}),
       TypeRegistry.fetch(this.workspace.types).catch((e) => {
