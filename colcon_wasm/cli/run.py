@@ -4,13 +4,12 @@
 """`colcon-wasm run`."""
 
 import argparse
-import sys
 
 from colcon_wasm.cli import CliExtensionPoint
 from colcon_wasm.cli.launch import add_runtime_arguments
-from colcon_wasm.cli.launch import run_plan
 from colcon_wasm.launch import LaunchPlan
 from colcon_wasm.launch import NodeProcess
+from colcon_wasm.launch.command import execute
 
 
 class RunCommand(CliExtensionPoint):
@@ -25,5 +24,6 @@ class RunCommand(CliExtensionPoint):
             help='Arguments of the executable, e.g. --ros-args -r chatter:=news -p rate:=5')
 
     def main(self, *, args):  # noqa: D102
-        process = NodeProcess(args.package, args.executable, arguments=args.arguments)
-        return run_plan(LaunchPlan([process]), args, command='colcon-wasm run', out=sys.stdout)
+        plan = LaunchPlan([NodeProcess(args.package, args.executable, arguments=args.arguments)])
+        return execute(plan, install_base=args.install_base, duration=args.duration,
+                       echo=args.echo, print_plan=args.print_plan, command='colcon-wasm run')
