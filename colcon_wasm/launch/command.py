@@ -6,7 +6,6 @@
 from pathlib import Path
 import sys
 
-from colcon_wasm import resources
 from colcon_wasm.launch import LaunchError
 from colcon_wasm.launch import load_launch_file
 from colcon_wasm.launch import plan_items
@@ -60,20 +59,24 @@ def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, com
     """
     out = out or sys.stdout
     err = err or sys.stderr
-    # imported here: colcon_wasm.server needs jinja2, which only serving uses
-    from colcon_wasm.server import find_runtime
-    from colcon_wasm.server import ServeError
     try:
         install_space = InstallSpace(install_base)
         description = host_plan(plan, install_space, duration=duration, echo=echo)
-        if print_plan:
-            for process in description['processes']:
-                print('[{}] {} {}'.format(process['label'], process['js'],
-                                          ' '.join(process['args'])).rstrip(), file=out)
-            return 0
+    except (LaunchError, InstallSpaceError) as e:
+        print('{}: {}'.format(command, e), file=err)
+        return 1
+    if print_plan:
+        for process in description['processes']:
+            print('[{}] {} {}'.format(process['label'], process['js'],
+                                      ' '.join(process['args'])).rstrip(), file=out)
+        return 0
+    from colcon_wasm import resources
+    from colcon_wasm.server import find_runtime
+    from colcon_wasm.server import ServeError
+    try:
         runtime_dir, _ = find_runtime(
             install_space, resources.path('packages') / 'wasm_js' / 'src')
         return run_host(description, runtime_dir)
-    except (LaunchError, InstallSpaceError, ServeError) as e:
+    except (LaunchError, ServeError) as e:
         print('{}: {}'.format(command, e), file=err)
         return 1
