@@ -143,7 +143,8 @@ async function main() {
   }
   executables.setEnabled(true);
   document.body.dataset.state = 'ready';
-  for (const request of runRequests()) {
+  const requests = runRequests();
+  for (const request of requests) {
     const found = workspace.packages.find((p) => p.name === request.pkg)
       ?.executables.find((e) => e.name === request.exe);
     if (!found) {
@@ -152,7 +153,7 @@ async function main() {
       continue;
     }
     const proc = session.startProcess(request.pkg, request.exe, request.args);
-    logs.select(proc.id);
+    if (requests.length === 1) logs.select(proc.id);
   }
 }
 

@@ -78,11 +78,11 @@ export class LogsDock {
 
   line(proc, entry) {
     if (entry.crash) {
-      return h('div.crash', { dataset: { crash: proc.label } },
+      return h('div.crash', { dataset: { crash: proc.label, proc: proc.label, seq: entry.seq } },
         h('strong', {}, `✖ ${proc.label} crashed`), entry.text,
         entry.detail ? h('pre', {}, entry.detail) : null);
     }
-    return h(`div.logline.${entry.severity}`, {},
+    return h(`div.logline.${entry.severity}`, { dataset: { proc: proc.label, seq: entry.seq } },
       this.current === 'all' ? h('span.who', {}, `[${proc.label}]`) : null, entry.text);
   }
 
