@@ -41,7 +41,7 @@ class Site:
     """Maps URL paths of the launcher to content."""
 
     def __init__(self, install_space, *, launcher_dir, runtime_dir, runtime_origin,
-                 title=None):
+                 runtime_entry='index.mjs', title=None):
         """
         Create the site.
 
@@ -54,6 +54,7 @@ class Site:
         self.launcher_dir = Path(launcher_dir)
         self.runtime_dir = Path(runtime_dir)
         self.runtime_origin = runtime_origin
+        self.runtime_entry = runtime_entry
         self.title = title or 'colcon-wasm: {}'.format(install_space.base.parent.name)
         self.environment = jinja2.Environment(
             loader=jinja2.FileSystemLoader(str(self.launcher_dir)),
@@ -96,7 +97,7 @@ class Site:
             'install_base': str(self.install_space.base),
             'packages': packages,
             'types': types,
-            'runtime': '/wasm_js/index.mjs',
+            'runtime': '/wasm_js/' + self.runtime_entry,
             'runtime_origin': self.runtime_origin,
             'warnings': warnings,
         }

@@ -13,8 +13,7 @@ const MAX_LOG = 5000;
 
 let logSeq = 0;
 
-function severityOf(stream, text, given) {
-  if (given) return String(given).toUpperCase().replace('WARNING', 'WARN');
+function severityOf(stream, text) {
   const m = SEVERITY.exec(text);
   if (m) return m[1] === 'WARNING' ? 'WARN' : m[1];
   return stream === 'stderr' && /error|abort|exception|fatal/i.test(text) ? 'ERROR' : 'INFO';
@@ -31,7 +30,7 @@ export class Session {
     this.tools = null;
     this.registry = new TypeRegistry();
     this.typeError = null;
-    this.graph = graphModel(null, this.processes);
+    this.graph = graphModel(null);
   }
 
   on(event, callback) {
@@ -57,13 +56,13 @@ export class Session {
     ]);
     this.runtime = runtime;
     this.registry = registry;
-    runtime.onGraphChange(() => this.refreshGraph());
     this.tools = await runtime.tools();
-    this.refreshGraph();
+    runtime.onGraphChange((raw) => this.refreshGraph(raw));
+    this.refreshGraph(runtime.graph());
   }
 
-  refreshGraph() {
-    this.graph = graphModel(this.runtime.graph(), this.processes);
+  refreshGraph(raw) {
+    this.graph = graphModel(raw, { toolsPid: this.tools ? this.tools.pid : undefined });
     this.emit('graph', this.graph);
   }
 
@@ -89,7 +88,7 @@ export class Session {
       url: new URL(info.url, location.href).href,
       args: proc.args,
       name: proc.label,
-      onLog: ({ stream, severity, text }) => this.addLog(proc, { stream, severity: severityOf(stream, text, severity), text }),
+      onLog: ({ stream, text }) => this.addLog(proc, { stream, severity: severityOf(stream, text), text }),
       onExit: (exit) => this.exited(proc, exit),
     }).then((handle) => {
       proc.handle = handle;
@@ -151,30 +150,38 @@ export class Session {
 
   // ---------------------------------------------------------------- tools
 
-  /** Subscribe to a topic: onBatch([{bytes, time, seq}]). Returns {close()}. */
+  /** Subscribe to a topic: onBatch([{bytes, time, seq}]). Returns {close()} at once. */
   subscribe(topic, type, onBatch) {
     let seq = 0;
     let closed = false;
-    let sub = null;
-    Promise.resolve(this.tools.subscribe(topic, type, {}, (messages) => {
+    const pending = this.tools.subscribe({ topic, type, qos: {} }, (messages) => {
       if (closed) return;
       const now = performance.now();
-      onBatch(messages.map((m) => ({
-        bytes: m instanceof Uint8Array ? m : m.data, time: now, seq: ++seq,
-      })));
-    })).then((s) => { sub = s; if (closed) s.close(); });
-    return { close: () => { closed = true; if (sub) sub.close(); } };
+      onBatch(messages.map((m) => ({ bytes: m.data, info: m.info, time: now, seq: ++seq })));
+    });
+    pending.catch((e) => console.error(`subscribing to ${topic} failed:`, e));
+    return {
+      ready: pending,
+      close: () => {
+        closed = true;
+        pending.then((s) => s.close()).catch(() => {});
+      },
+    };
   }
 
-  /** A publisher of the tools process: {publish(bytes)}. */
+  /** A publisher of the tools process: {publish(bytes) -> Promise, close()}. */
   publisher(topic, type) {
-    const pub = this.tools.publisher(topic, type, {});
-    return { publish: (bytes) => pub.publish(bytes), close: () => pub.close && pub.close() };
+    const pending = this.tools.advertise({ topic, type, qos: {} });
+    return {
+      publish: async (bytes) => (await pending).publish(bytes),
+      close: () => pending.then((p) => p.close()).catch(() => {}),
+    };
   }
 
   /** Call a service with request bytes; resolves to the response bytes. */
-  call(service, type, bytes, timeoutMs) {
-    return this.tools.call(service, type, bytes, { timeoutMs });
+  async call(service, type, bytes, timeoutMs) {
+    const response = await this.tools.call({ service, type, qos: {}, timeoutMs }, bytes);
+    return response.data;
   }
 
   /** The {call, subscribe} pair the action and parameter clients use. */

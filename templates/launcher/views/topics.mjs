@@ -123,7 +123,9 @@ class TopicInspector {
       this.imageView = this.imageView || new ImageView(COMPRESSED_IMAGE_TYPES.has(this.type));
       setChildren(this.body, this.imageView.element);
     } else if (tab === 'publish') {
-      setChildren(this.body, this.canDecode ? new PublishPanel(this.session, this.topic.name, this.type).element : this.noTypes());
+      if (!this.canDecode) { setChildren(this.body, this.noTypes()); return; }
+      this.publishPanel = this.publishPanel || new PublishPanel(this.session, this.topic.name, this.type);
+      setChildren(this.body, this.publishPanel.element);
     }
   }
 
@@ -216,6 +218,7 @@ class TopicInspector {
 
   close() {
     clearInterval(this.timer);
+    if (this.publishPanel) this.publishPanel.close();
     if (this.plot) this.plot.close();
     if (this.subscription) this.subscription.close();
   }
@@ -240,16 +243,21 @@ export class PublishPanel {
     this.type = type;
   }
 
+  close() {
+    if (this.timer) this.toggleRate();
+    if (this.publisher) this.publisher.close();
+  }
+
   ensurePublisher() {
     if (!this.publisher) this.publisher = this.session.publisher(this.topic, this.type);
     return this.publisher;
   }
 
-  once() {
+  async once() {
     let bytes;
     try { bytes = this.form.encode(); } catch (e) { return; }
     try {
-      this.ensurePublisher().publish(bytes);
+      await this.ensurePublisher().publish(bytes);
       this.sent++;
       this.status.textContent = `published ${this.sent} message${this.sent === 1 ? '' : 's'} on ${this.topic}`;
     } catch (e) {
@@ -271,14 +279,13 @@ export class PublishPanel {
     try { bytes = this.form.encode(); } catch (e) { return; }
     this.rateButton.textContent = 'Stop';
     this.timer = setInterval(() => {
-      try {
-        this.ensurePublisher().publish(bytes);
+      this.ensurePublisher().publish(bytes).then(() => {
         this.sent++;
         this.status.textContent = `published ${this.sent} messages at ${hz} Hz`;
-      } catch (e) {
-        this.toggleRate();
+      }, (e) => {
+        if (this.timer) this.toggleRate();
         this.form.error.textContent = `publishing failed: ${e.message}`;
-      }
+      });
     }, 1000 / hz);
   }
 }

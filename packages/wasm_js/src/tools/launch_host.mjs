@@ -19,7 +19,7 @@ import process from 'node:process';
 import { pathToFileURL } from 'node:url';
 
 import { TypeRegistry } from '../cdr.mjs';
-import { Runtime } from '../index.mjs';
+import { Runtime } from '../runtime.mjs';
 import { graphModel } from './graph.mjs';
 import { formatYaml } from './yaml.mjs';
 
@@ -43,7 +43,7 @@ function echoTopic(runtime, tools, registry, topic, stopping) {
   let subscription = null;
   const tryStart = () => {
     if (subscription || stopping()) return;
-    const entry = graphModel(runtime.graph(), new Map()).topics.find((t) => t.name === topic);
+    const entry = graphModel(runtime.graph(), { toolsPid: tools.pid }).topics.find((t) => t.name === topic);
     if (!entry || entry.types.length === 0) return;
     const type = entry.types[0];
     if (!registry.has(type)) {
@@ -52,18 +52,18 @@ function echoTopic(runtime, tools, registry, topic, stopping) {
       subscription = { close() {} };
       return;
     }
-    subscription = tools.subscribe(topic, type, {}, (messages) => {
+    subscription = tools.subscribe({ topic, type, qos: {} }, (messages) => {
       for (const m of messages) {
-        const bytes = m instanceof Uint8Array ? m : m.data;
         let text;
         try {
-          text = formatYaml(registry.decode(type, bytes));
+          text = formatYaml(registry.decode(type, m.data));
         } catch (e) {
           text = `# ${e.message}`;
         }
         out(`[echo ${topic}]\n${text}\n---`);
       }
     });
+    subscription.catch((e) => err(`[ERROR] [echo]: cannot subscribe to ${topic}: ${e.message}`));
   };
   runtime.onGraphChange(tryStart);
   tryStart();
