@@ -61,7 +61,7 @@ export PATH="$venv/bin:$PATH"
 # 3. Build the demo workspace to WebAssembly.
 say "Building the demo workspace (demo/src) with colcon build --wasm"
 cd "$repo/demo"
-nice -n 10 colcon build --wasm --event-handlers console_cohesion+ status-
+nice -n 10 colcon build --wasm --event-handlers console_cohesion+
 
 # 4. Serve it.
 if [ "$serve" = 1 ]; then

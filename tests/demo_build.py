@@ -38,7 +38,7 @@ def demo_install():
         workspace = Path(tempfile.mkdtemp(prefix='colcon-wasm-demo-'))
         shutil.copytree(REPO / 'demo' / 'src', workspace / 'src')
         command = ['nice', '-n', '10', str(venv_tool('colcon')), 'build', '--wasm',
-                   '--event-handlers', 'console_cohesion+', 'status-']
+                   '--event-handlers', 'console_cohesion+']
         result = subprocess.run(command, cwd=str(workspace), capture_output=True, text=True,
                                 env=dict(os.environ), timeout=1800)
         if result.returncode != 0:
