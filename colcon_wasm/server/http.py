@@ -15,6 +15,7 @@ from http.server import BaseHTTPRequestHandler
 from http.server import ThreadingHTTPServer
 import shutil
 import socket
+from urllib.parse import parse_qs
 from urllib.parse import urlsplit
 
 from colcon_core.logging import colcon_logger
@@ -43,6 +44,11 @@ class LauncherRequestHandler(BaseHTTPRequestHandler):
     protocol_version = 'HTTP/1.1'
     server_version = 'colcon-wasm'
     sys_version = ''
+
+    def setup(self):
+        """Send small responses at once: no Nagle delay between headers and body."""
+        super().setup()
+        self.connection.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
 
     def do_GET(self):  # noqa: N802 the name http.server calls
         """Answer a GET request."""
@@ -79,8 +85,9 @@ class LauncherRequestHandler(BaseHTTPRequestHandler):
     def _respond(self, send_body):
         site = self.server.site
         try:
-            segments = split_url_path(urlsplit(self.path).path)
-            content = site.route(segments)
+            url = urlsplit(self.path)
+            segments = split_url_path(url.path)
+            content = site.route(segments, parse_qs(url.query))
         except Refused as e:
             self._error(e.status, e.reason)
             return

@@ -18,6 +18,8 @@
 
 import json
 from pathlib import Path
+import posixpath
+import re
 import threading
 
 from colcon_wasm.server.files import Refused
@@ -25,6 +27,11 @@ from colcon_wasm.server.files import resolve_under
 import jinja2
 
 PAGE_TEMPLATE = 'index.html'
+PAGE_MODULE = '/launcher/app.mjs'
+
+# static `import ... from '<url>'` and `export ... from '<url>'` of an ES module
+_IMPORT = re.compile(r"""^\s*(?:import|export)\b[^'"]*?\bfrom\s*['"]([^'"]+)['"]"""
+                     r"""|^\s*import\s*['"]([^'"]+)['"]""", re.MULTILINE)
 
 
 class Content:
@@ -137,14 +144,15 @@ class Site:
 
     # -------------------------------------------------------------- routing
 
-    def route(self, segments):
+    def route(self, segments, query=None):
         """
         Return the Content for decoded URL path segments.
 
+        :param query: the parsed query string (``?run=`` preloads executables)
         :raises Refused: 404 for unknown paths, 403 for paths out of bounds
         """
         if not segments or segments == ['index.html']:
-            return self.page()
+            return self.page(query)
         head, rest = segments[0], segments[1:]
         if head == 'workspace.json' and not rest:
             return Content(body=json.dumps(self.workspace()).encode(),
@@ -168,9 +176,53 @@ class Site:
                            content_type='image/svg+xml')
         raise Refused(404, 'not found')
 
-    def page(self):
+    def _module_path(self, url):
+        """Return the file of a module URL of the site, or None."""
+        for prefix, root in (('/launcher/', self.launcher_dir), ('/wasm_js/', self.runtime_dir)):
+            if url.startswith(prefix):
+                return root / url[len(prefix):]
+        return None
+
+    def module_graph(self, entries):
+        """
+        Return the URLs of the ES modules the entries import, statically.
+
+        The page preloads them (modulepreload) so that the browser fetches
+        the whole graph at once instead of one import level after another.
+        Read anew for each page (a few small files).
+        """
+        seen = []
+        pending = list(entries)
+        while pending:
+            url = pending.pop(0)
+            path = self._module_path(url)
+            if url in seen or path is None:
+                continue
+            try:
+                text = path.read_text(encoding='utf-8')
+            except OSError:
+                continue
+            seen.append(url)
+            for match in _IMPORT.finditer(text):
+                target = match.group(1) or match.group(2)
+                if target.startswith(('./', '../')):
+                    target = posixpath.normpath(posixpath.join(posixpath.dirname(url), target))
+                if target.startswith('/'):
+                    pending.append(target)
+        return seen
+
+    def page(self, query=None):
         """Render the launcher page with the workspace embedded."""
         template = self.environment.get_template(PAGE_TEMPLATE)
         workspace = self.workspace()
-        html = template.render(title=self.title, workspace=workspace)
+        modules = self.module_graph([PAGE_MODULE, workspace['runtime']])
+        preload = []
+        for spec in (query or {}).get('run', []):
+            package, _, executable = spec.split(' ')[0].partition('/')
+            for p in workspace['packages']:
+                for e in p['executables']:
+                    if p['name'] == package and e['name'] == executable:
+                        preload.append(e['url'][:-len('.js')] + '.wasm')
+        html = template.render(title=self.title, workspace=workspace, modules=modules,
+                               preload=preload)
         return Content(body=html.encode('utf-8'), content_type='text/html; charset=utf-8')

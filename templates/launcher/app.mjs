@@ -132,17 +132,10 @@ async function main() {
   try {
     await session.start();
   } catch (e) {
-    banners.append(h('div.banner.fatal#runtime-error', {}, h('h2', {}, 'The runtime did not start'),
-      h('pre', {}, String(e && e.stack ? e.stack : e))));
-    executables.setEnabled(false);
-    document.body.dataset.state = 'runtime-error';
+    showRuntimeError(banners, executables, e);
     return;
   }
-  if (session.typeError) {
-    banners.append(h('div.banner.warn', {}, `Type descriptions: ${session.typeError}`));
-  }
   executables.setEnabled(true);
-  document.body.dataset.state = 'ready';
   const requests = runRequests();
   for (const request of requests) {
     const found = workspace.packages.find((p) => p.name === request.pkg)
@@ -155,6 +148,23 @@ async function main() {
     const proc = session.startProcess(request.pkg, request.exe, request.args);
     if (requests.length === 1) logs.select(proc.id);
   }
+  try {
+    await session.ready;
+  } catch (e) {
+    showRuntimeError(banners, executables, e);
+    return;
+  }
+  if (session.typeError) {
+    banners.append(h('div.banner.warn', {}, `Type descriptions: ${session.typeError}`));
+  }
+  document.body.dataset.state = 'ready';
+}
+
+function showRuntimeError(banners, executables, e) {
+  banners.append(h('div.banner.fatal#runtime-error', {}, h('h2', {}, 'The runtime did not start'),
+    h('pre', {}, String(e && e.stack ? e.stack : e))));
+  executables.setEnabled(false);
+  document.body.dataset.state = 'runtime-error';
 }
 
 main().catch((e) => {

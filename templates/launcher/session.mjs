@@ -44,21 +44,26 @@ export class Session {
     }
   }
 
-  /** Start the Runtime, the tools process and load the type descriptions. */
+  /**
+   * Start the Runtime; the type descriptions and the tools process follow in
+   * the background (`ready`), so that executables can start at once.
+   */
   async start() {
     const { Runtime } = await import(this.workspace.runtime);
-    const [runtime, registry] = await Promise.all([
-      Runtime.create({}),
-      TypeRegistry.fetch(this.workspace.types).catch((e) => {
-        this.typeError = e.message;
-        return new TypeRegistry();
-      }),
-    ]);
-    this.runtime = runtime;
-    this.registry = registry;
-    this.tools = await runtime.tools();
-    runtime.onGraphChange((raw) => this.refreshGraph(raw));
-    this.refreshGraph(runtime.graph());
+    const registry = TypeRegistry.fetch(this.workspace.types).catch((e) => {
+      this.typeError = e.message;
+      return new TypeRegistry();
+    });
+    this.runtime = await Runtime.create({});
+    this.ready = (async () => {
+      this.registry = await registry;
+      this.tools = await this.runtime.tools();
+      this.runtime.onGraphChange((raw) => this.refreshGraph(raw));
+      this.refreshGraph(this.runtime.graph());
+      this.emit('ready');
+    })();
+    // awaited by the page after it started the ?run executables
+    this.ready.catch(() => {});
   }
 
   refreshGraph(raw) {

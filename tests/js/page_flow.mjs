@@ -10,8 +10,7 @@
 // Prints one JSON line per step ({step, ok, ms, error?, ...}) and exits 1 at
 // the first failed step.
 
-import { mkdirSync, rmSync, mkdtempSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { mkdirSync } from 'node:fs';
 import { join } from 'node:path';
 
 import { chromium } from 'playwright-core';
@@ -20,12 +19,11 @@ const options = JSON.parse(process.argv[2]);
 const STEP_TIMEOUT = options.timeoutMs || 20000;
 mkdirSync(options.screenshots, { recursive: true });
 
-const profile = mkdtempSync(join(tmpdir(), 'colcon-wasm-chromium-'));
+// playwright-core gives the browser a fresh temporary profile (user data dir)
 const browser = await chromium.launch({
   executablePath: options.chromium,
   args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-    '--disable-background-networking', '--disable-component-update', '--disable-sync',
-    `--user-data-dir=${profile}`],
+    '--disable-background-networking', '--disable-component-update', '--disable-sync'],
 });
 
 let shot = 0;
@@ -131,7 +129,7 @@ async function demoFlow() {
     await page.locator('tr[data-topic="/chatter"]').click();
     const echo = page.locator('[data-echo="/chatter"] .echo-msg pre').first();
     await echo.waitFor({ timeout: STEP_TIMEOUT });
-    await page.waitForFunction(() => /data: Hello World: \d+\ncount: \d+/.test(
+    await page.waitForFunction(() => /data: 'Hello World: \d+'\ncount: \d+/.test(
       document.querySelector('[data-echo="/chatter"] .echo-msg pre')?.textContent || ''), null, { timeout: STEP_TIMEOUT });
   });
 
@@ -269,6 +267,5 @@ try {
   if (options.flow === 'isolation' || !options.flow) await notIsolatedFlow();
 } finally {
   await browser.close();
-  rmSync(profile, { recursive: true, force: true });
 }
 process.exit(failed ? 1 : 0);

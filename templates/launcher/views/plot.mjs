@@ -19,7 +19,7 @@ export class Plot {
     this.pauseButton = h('button', { onclick: () => this.togglePause() }, 'Pause');
     this.windowSelect = h('select', { onchange: () => { this.windowSeconds = Number(this.windowSelect.value); } },
       [5, 10, 30, 60].map((s) => h('option', { value: s, selected: s === windowSeconds }, `${s} s`)));
-    const initial = this.paths.filter((p) => !/stamp|count|step|seq/.test(p)).slice(0, 2);
+    const initial = this.paths.filter((p) => !/stamp|count|step|seq|time|id$/.test(p)).slice(0, 2);
     (initial.length ? initial : this.paths.slice(0, 1)).forEach((p) => this.enable(p));
     this.renderFields();
     this.element = this.paths.length
