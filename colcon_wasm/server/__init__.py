@@ -12,7 +12,7 @@ from colcon_wasm.server.site import Site
 __all__ = ['LauncherServer', 'ServeError', 'Site', 'find_runtime', 'make_server',
            'runtime_entry']
 
-# The module that exports Runtime (docs/design.md names index.mjs; runtime.mjs is the module itself).
+# The module that exports Runtime: docs/design.md names index.mjs, runtime.mjs is the module.
 RUNTIME_ENTRIES = ('index.mjs', 'runtime.mjs')
 
 
