@@ -83,6 +83,11 @@ function runRequests() {
 
 async function main() {
   const session = new Session(workspace);
+  // for the browser console: colconWasm.session.runtime, .graph, .processes
+  window.colconWasm = { session };
+  // start the runtime first: the views below build while its modules load
+  const starting = window.crossOriginIsolated ? session.start() : null;
+  if (starting) starting.catch(() => {});
   const banners = h('div.banners');
   const side = h('aside.side');
   const main = h('main.main');
@@ -130,7 +135,7 @@ async function main() {
       + 'with colcon build --wasm, then reload this page.'));
   }
   try {
-    await session.start();
+    await starting;
   } catch (e) {
     showRuntimeError(banners, executables, e);
     return;
