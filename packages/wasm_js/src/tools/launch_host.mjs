@@ -94,6 +94,9 @@ async function main() {
         states.set(proc.label, 'crashed');
         err(`[ERROR] [${proc.label}]: process has died [exit code ${code ?? 'none'}${reason ? `, ${reason}` : ''}, `
           + `cmd '${proc.js} ${proc.args.join(' ')}']`.replace(/ '\]$/, "']"));
+      } else if (stopping && reason === 'stopped') {
+        states.set(proc.label, 'exited');
+        out(`[INFO] [${proc.label}]: process stopped`);
       } else {
         states.set(proc.label, 'exited');
         out(`[INFO] [${proc.label}]: process has finished cleanly`);
