@@ -106,13 +106,15 @@ struct CTraits
     return static_cast<const Sequence *>(field)->data;
   }
 
-  /// Resize a sequence (its elements are re-initialized); returns its data, or null.
+  /// Resize a sequence (its elements are re-initialized); returns its data (the field
+  /// itself when empty), or null when out of memory.
   static void * resize_sequence(const MessageMember & member, void * field, size_t size)
   {
     if (member.resize_function == nullptr || !member.resize_function(field, size)) {
       return nullptr;
     }
-    return static_cast<Sequence *>(field)->data;
+    // An empty sequence has no data: return the field itself, never read through.
+    return size > 0 ? static_cast<Sequence *>(field)->data : field;
   }
 
   static const MessageMembers * sub_members(const MessageMember & member)
