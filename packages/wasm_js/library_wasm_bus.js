@@ -19,13 +19,18 @@
 var LibraryWasmBus = {
   // addRunDependency / removeRunDependency come from the preamble (always present).
   $WasmBus__postset: 'WasmBus.init();',
+#if USE_PTHREADS
+  $WasmBus__deps: ['$ENV', 'emscripten_main_thread_process_queued_calls'],
+#else
+  $WasmBus__deps: ['$ENV'],
+#endif
   $WasmBus: {
     client: null,
     moduleUrl: null,
     error: '',
     pending: [],
-    // The main thread of a pthread program must run the calls other threads
-    // proxy to it (their printf, ...) between sleeps.
+    // Unused since the wait loop services the main thread's call queue itself
+    // (BusClient.service); kept false so waits never return -1.
     returnAfterWake: false,
 
     fail: function(e) {
@@ -39,6 +44,17 @@ var LibraryWasmBus = {
         '(Runtime.spawn, or `node <wasm_js>/src/cli.mjs exe.js`), or make share/wasm_js findable ' +
         '(WASM_JS_DIR or AMENT_PREFIX_PATH) when running it alone';
       return 1;
+    },
+
+    // Install the BusClient of the main runtime thread.
+    setClient: function(client, moduleUrl) {
+      WasmBus.client = client;
+      WasmBus.moduleUrl = moduleUrl;
+#if USE_PTHREADS
+      // Waits on this thread run the calls pthreads proxy to it (printf, ...).
+      client.service = function() { _emscripten_main_thread_process_queued_calls(); };
+#endif
+      WasmBus.ready();
     },
 
     whenReady: function(fn) {
@@ -99,7 +115,6 @@ var LibraryWasmBus = {
         };
         return;
       }
-      WasmBus.returnAfterWake = true;
       // Give every pthread worker the bus right after Emscripten loads it.
       var load = PThread.loadWasmModuleToWorker;
       PThread.loadWasmModuleToWorker = function(worker) {
@@ -113,10 +128,14 @@ var LibraryWasmBus = {
         return r;
       };
 #endif
+      // The environment the host gives (Module.env; colcon-wasm's glue start-up
+      // fragment does the same for executables that do not link wasm_cpp).
+      if (Module['env'] && typeof ENV == 'object') {
+        for (var k in Module['env']) ENV[k] = String(Module['env'][k]);
+      }
       var given = Module['wasmBus'];
       if (given && given['client']) {
-        WasmBus.client = given['client'];
-        WasmBus.moduleUrl = given['moduleUrl'];
+        WasmBus.setClient(given['client'], given['moduleUrl']);
         return;
       }
 #if ENVIRONMENT_MAY_BE_NODE
@@ -128,9 +147,7 @@ var LibraryWasmBus = {
         }
         addRunDependency('wasm-bus');
         import(url).then(function(m) {
-          WasmBus.client = m.BusClient.createPrivate();
-          WasmBus.moduleUrl = url;
-          WasmBus.ready();
+          WasmBus.setClient(m.BusClient.createPrivate(), url);
         }).catch(function(err) {
           WasmBus.error = 'wasm_cpp: cannot create a private bus from ' + url + ': ' + err;
         }).then(function() {
@@ -259,14 +276,14 @@ var LibraryWasmBus = {
   // info (wasm_bus_take_info): f64 source ms, f64 received ms, u32 pub seq lo/hi,
   // u32 reception seq lo/hi, i32 gid[4], u32 request seq lo/hi, i32 same process,
   // i32 length, i32 data pointer.
-  wasm_bus_take__deps: ['$WasmBus', '$getWasmTableEntry'],
+  wasm_bus_take__deps: ['$WasmBus'],
   wasm_bus_take: function(ep, mode, allocFn, deallocFn, state, info) {
     try {
       var c = WasmBus.client;
       for (;;) {
         var len = c.takeBegin(ep, mode);
         if (len < 0) return 0;
-        var ptr = getWasmTableEntry(allocFn)(len > 0 ? len : 1, state);
+        var ptr = wasmTable.get(allocFn)(len > 0 ? len : 1, state);
         if (!ptr) {
           WasmBus.error = 'take on \'' + c.endpointName(ep) + '\' failed: the allocator returned null for ' + len + ' bytes';
           return -10;
@@ -288,7 +305,7 @@ var LibraryWasmBus = {
           HEAP32[w + 16] = ptr;
           return 1;
         }
-        getWasmTableEntry(deallocFn)(ptr, state);
+        wasmTable.get(deallocFn)(ptr, state);
       }
     } catch (e) {
       return -WasmBus.fail(e);

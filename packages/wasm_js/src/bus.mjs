@@ -45,6 +45,8 @@ export class BusError extends Error {
 }
 
 const REC_DYING = 2;
+/** A removed writer whose ring is kept until its readers drained it. */
+export const REC_ZOMBIE = 3;
 const H_NODE_HINT = 26;
 const H_EP_HINT = 27;
 const H_LINK_HINT = 28;
@@ -748,7 +750,13 @@ export class Bus {
   }
 
   /**
-   * Remove an endpoint, its links, its ring and message blocks (lock held). Idempotent.
+   * Remove an endpoint from the graph (lock held). Idempotent.
+   *
+   * A writer whose ring still holds messages some live reader has not taken
+   * becomes a ZOMBIE: gone from the graph and from matching, but its ring
+   * stays readable through the remaining links until they are drained (a
+   * message published before the writer went away is delivered, as with
+   * DDS reader caches). Otherwise the ring and its blocks are freed.
    * @param {number} index
    * @returns {Set<number>} pids of the peers that lost a match (to ring)
    */
@@ -756,8 +764,12 @@ export class Bus {
     const i32 = this.i32;
     const b = this.ep(index);
     const peers = new Set();
-    if (Atomics.load(i32, b + E.STATE) === REC_FREE) return peers;
+    const st = Atomics.load(i32, b + E.STATE);
+    if (st === REC_FREE || st === REC_ZOMBIE) return peers;
     Atomics.store(i32, b + E.STATE, REC_DYING);
+    const head = Atomics.load(i32, b + E.HEAD);
+    const zombies = new Set();
+    let kept = 0;
     const hwm = i32[H.LINK_HWM];
     for (let l = 0; l < hwm; l++) {
       const lb = this.link(l);
@@ -765,10 +777,29 @@ export class Bus {
       const w = i32[lb + L.WRITER];
       const r = i32[lb + L.READER];
       if (w !== index && r !== index) continue;
-      Atomics.store(i32, lb + L.STATE, REC_FREE);
       const other = w === index ? r : w;
-      peers.add(i32[this.ep(other) + E.PID]);
+      const ob = this.ep(other);
+      peers.add(i32[ob + E.PID]);
+      if (w === index && Atomics.load(i32, ob + E.STATE) === REC_ALIVE &&
+          ((head - Atomics.load(i32, lb + L.CURSOR)) | 0) > 0) {
+        kept++;
+        continue;
+      }
+      Atomics.store(i32, lb + L.STATE, REC_FREE);
+      if (Atomics.load(i32, ob + E.STATE) === REC_ZOMBIE) zombies.add(other);
     }
+    for (const z of zombies) this._freeZombieIfDrained(z);
+    if (kept) {
+      Atomics.store(i32, b + E.STATE, REC_ZOMBIE);
+      return peers;
+    }
+    this._freeEndpoint(index);
+    return peers;
+  }
+
+  _freeEndpoint(index) {
+    const i32 = this.i32;
+    const b = this.ep(index);
     const ring = i32[b + E.RING_OFF];
     if (ring) {
       const slots = i32[b + E.RING_SLOTS];
@@ -781,7 +812,38 @@ export class Bus {
     }
     this.free(i32[b + E.STR_OFF]);
     Atomics.store(i32, b + E.STATE, REC_FREE);
-    return peers;
+  }
+
+  /** Free a zombie writer once no link reads from it (lock held). */
+  _freeZombieIfDrained(index) {
+    const i32 = this.i32;
+    if (Atomics.load(i32, this.ep(index) + E.STATE) !== REC_ZOMBIE) return;
+    const hwm = i32[H.LINK_HWM];
+    for (let l = 0; l < hwm; l++) {
+      const lb = this.link(l);
+      if (Atomics.load(i32, lb + L.STATE) === REC_ALIVE && i32[lb + L.WRITER] === index) return;
+    }
+    this._freeEndpoint(index);
+  }
+
+  /**
+   * Drop links from zombie writers that their readers have drained (lock held).
+   * @param {number[]} links
+   */
+  reapDrainedLinks(links) {
+    const i32 = this.i32;
+    const writers = new Set();
+    for (const l of links) {
+      const lb = this.link(l);
+      if (Atomics.load(i32, lb + L.STATE) !== REC_ALIVE) continue;
+      const w = i32[lb + L.WRITER];
+      const wb = this.ep(w);
+      if (Atomics.load(i32, wb + E.STATE) !== REC_ZOMBIE) continue;
+      if (((Atomics.load(i32, wb + E.HEAD) - Atomics.load(i32, lb + L.CURSOR)) | 0) > 0) continue;
+      Atomics.store(i32, lb + L.STATE, REC_FREE);
+      writers.add(w);
+    }
+    for (const w of writers) this._freeZombieIfDrained(w);
   }
 
   /**

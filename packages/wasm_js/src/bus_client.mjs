@@ -28,7 +28,7 @@
 
 import {
   Bus, BusError, Code, KIND_CLIENT, KIND_NODE, KIND_PUBLISHER, KIND_SERVICE, KIND_SUBSCRIPTION,
-  MAX_RING_SLOTS, nextPow2, now,
+  MAX_RING_SLOTS, REC_ZOMBIE, nextPow2, now,
 } from './bus.mjs';
 import {
   E, EP_FLAG_IGNORE_LOCAL, H, L, LINK_BEST_EFFORT, LINK_BLOCKING, LINK_TARGETED, N, P,
@@ -130,6 +130,15 @@ export class BusClient {
     /** Per-reader "arrivals seen" marks of the listener (link index -> head). */
     this._listenMarks = new Map();
     this._nextExpiry = Infinity;
+    /**
+     * Called after reading the doorbell and before checking, in every wait of
+     * this thread. The main thread of a pthread program sets it to run the
+     * calls other threads proxied to it (their printf, ...): those threads
+     * ring the doorbell when they queue a call, so running the queue there
+     * keeps the no-lost-wake-up argument intact.
+     * @type {?function(): void}
+     */
+    this.service = null;
   }
 
   /** The bus' largest message in bytes. */
@@ -439,6 +448,7 @@ export class BusClient {
       for (;;) {
         const i32 = bus.i32;
         const bell = Atomics.load(i32, this.bellIndex);
+        if (this.service) this.service();
         // The slot holds message `old` only if it was committed (ring not yet wrapped otherwise).
         if (Atomics.load(i32, sw + S.COMMIT) !== ((old + 1) | 0)) return;
         const blocker = this._blockingReader(w, old, sw);
@@ -499,6 +509,7 @@ export class BusClient {
       for (;;) {
         const i32 = bus.i32;
         const bell = Atomics.load(i32, this.bellIndex);
+        if (this.service) this.service();
         this._refresh();
         const w = this._writerInfo(ep);
         const head = Atomics.load(i32, b + E.HEAD);
@@ -574,6 +585,7 @@ export class BusClient {
     const i32 = bus.i32;
     const f64 = bus.f64;
     const rb = bus.ep(ep);
+    let drained = null;
     let bestLink = -1;
     let bestTime = Infinity;
     let bestCursor = 0;
@@ -584,7 +596,14 @@ export class BusClient {
       if (Atomics.load(i32, lb + L.STATE) !== REC_ALIVE) continue;
       const writer = i32[lb + L.WRITER];
       const wb = bus.ep(writer);
-      if (Atomics.load(i32, wb + E.STATE) !== REC_ALIVE) continue;
+      const wstate = Atomics.load(i32, wb + E.STATE);
+      if (wstate !== REC_ALIVE) {
+        if (wstate !== REC_ZOMBIE) continue;
+        if (((Atomics.load(i32, wb + E.HEAD) - Atomics.load(i32, lb + L.CURSOR)) | 0) <= 0) {
+          (drained || (drained = [])).push(l);
+          continue;
+        }
+      }
       const slots = i32[wb + E.RING_SLOTS];
       const ring = i32[wb + E.RING_OFF] >> 2;
       const flags = i32[lb + L.FLAGS];
@@ -647,6 +666,7 @@ export class BusClient {
         break;
       }
     }
+    if (drained) this._reapDrained(drained);
     if (bestLink < 0) return -1;
     const st = this._t;
     const commit = (bestCursor + 1) | 0;
@@ -665,6 +685,18 @@ export class BusClient {
       st.block = -1;
     }
     return st.len;
+  }
+
+  /** Remove links from writers that left and whose messages we took (rare). */
+  _reapDrained(links) {
+    const bus = this.bus;
+    bus.lock(this.pid);
+    try {
+      bus.reapDrainedLinks(links);
+      bus.bumpGraph();
+    } finally {
+      bus.unlock(this.pid);
+    }
   }
 
   /**
@@ -752,7 +784,8 @@ export class BusClient {
       const lb = bus.link(links[i]);
       if (Atomics.load(i32, lb + L.STATE) !== REC_ALIVE) continue;
       const other = i32[lb + L.WRITER] === ep ? i32[lb + L.READER] : i32[lb + L.WRITER];
-      if (bus.processAlive(i32[bus.ep(other) + E.PID])) n++;
+      const ob = bus.ep(other);
+      if (Atomics.load(i32, ob + E.STATE) === REC_ALIVE && bus.processAlive(i32[ob + E.PID])) n++;
     }
     return n;
   }
@@ -814,7 +847,7 @@ export class BusClient {
       const lb = bus.link(links[i]);
       if (Atomics.load(i32, lb + L.STATE) !== REC_ALIVE) continue;
       const wb = bus.ep(i32[lb + L.WRITER]);
-      if (!bus.processAlive(i32[wb + E.PID])) continue;
+      if (Atomics.load(i32, wb + E.STATE) !== REC_ALIVE || !bus.processAlive(i32[wb + E.PID])) continue;
       const lease = f64[(wb + E.LEASE_MS_F64) >> 1];
       if (i32[wb + E.QOS + QOS.LIVELINESS] === Liveliness.MANUAL_BY_TOPIC && lease !== Infinity) {
         const until = f64[(wb + E.LAST_ASSERT_F64) >> 1] + lease;
@@ -1012,6 +1045,7 @@ export class BusClient {
     const deadline = timeoutMs < 0 ? Infinity : now() + timeoutMs;
     for (;;) {
       const bell = this.bell();
+      if (this.service) this.service();
       const ready = this.checkItems(items, base, count, heap32);
       if (ready > 0 || timeoutMs === 0) return ready;
       const t = now();
@@ -1098,6 +1132,7 @@ export class BusClient {
     const deadline = timeoutMs < 0 ? Infinity : now() + timeoutMs;
     for (;;) {
       const bell = this.bell();
+      if (this.service) this.service();
       const n = this.listenCheck(items, base, count);
       if (n > 0) return n;
       const t = now();

@@ -46,7 +46,7 @@ export async function startProcess(msg, platform) {
       print: (text) => post({ type: FromHost.LOG, stream: 'stdout', text: String(text) }),
       printErr: (text) => post({ type: FromHost.LOG, stream: 'stderr', text: String(text) }),
       wasmBus: { client, moduleUrl: msg.busModuleUrl },
-      wasmEnv: env,
+      env,
       locateFile: (path) => platform.locate(path),
       mainScriptUrlOrBlob: platform.locate(msg.glueFile),
       instantiateWasm: (imports, receive) => {

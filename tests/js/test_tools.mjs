@@ -1,0 +1,128 @@
+// Copyright 2026 colcon-wasm contributors
+// Licensed under the Apache License, Version 2.0
+
+// Tests of the pure helpers of packages/wasm_js/src/tools/, run by
+// tests/test_page_tools.py with `node --test` (CDR_TYPES: cdr_test_msgs types).
+
+import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
+import { test } from 'node:test';
+
+import { TypeRegistry } from '../../packages/wasm_js/src/cdr.mjs';
+import { asNumber, getPath, numericPaths } from '../../packages/wasm_js/src/tools/fields.mjs';
+import { compressedMimeType, ImageError, imageToRgba } from '../../packages/wasm_js/src/tools/image.mjs';
+import { formatBandwidth, TopicStats } from '../../packages/wasm_js/src/tools/stats.mjs';
+import { formatYaml, parseYaml, YamlError } from '../../packages/wasm_js/src/tools/yaml.mjs';
+
+const registry = new TypeRegistry([JSON.parse(readFileSync(process.env.CDR_TYPES, 'utf-8'))]);
+
+test('formatYaml prints messages as ros2 topic echo does', () => {
+  const text = formatYaml({
+    header: { stamp: { sec: 1, nanosec: 5n }, frame_id: 'map' },
+    data: Float64Array.of(1.5, -2),
+    names: ['a', 'true', '', 'x: y'],
+    points: [{ x: 1, y: 2 }],
+    empty: [],
+    flag: false,
+    ratio: NaN,
+  });
+  assert.equal(text, [
+    'header:', '  stamp:', '    sec: 1', '    nanosec: 5', '  frame_id: map',
+    'data:', '- 1.5', '- -2',
+    'names:', '- a', "- 'true'", "- ''", "- 'x: y'",
+    'points:', '- x: 1', '  y: 2',
+    'empty: []', 'flag: false', 'ratio: .nan'].join('\n'));
+});
+
+test('formatYaml cuts long arrays and says how much was left out', () => {
+  const text = formatYaml({ data: new Uint8Array(1000) }, { maxArray: 3 });
+  assert.equal(text, "data:\n- 0\n- 0\n- 0\n- '...' # 997 more, 1000 in all");
+});
+
+test('parseYaml reads what users type in ros2 topic pub style', () => {
+  assert.deepEqual(parseYaml("{data: 'hello world'}"), { data: 'hello world' });
+  assert.deepEqual(parseYaml('data: hello # a comment'), { data: 'hello' });
+  assert.deepEqual(parseYaml('linear: {x: 0.5, y: 0, z: 0}\nangular:\n  z: -1.25e-1\n'),
+    { linear: { x: 0.5, y: 0, z: 0 }, angular: { z: -0.125 } });
+  assert.deepEqual(parseYaml('values:\n- 1\n- 2\nnames: [a, "b c", \'d\'\'e\']'),
+    { values: [1, 2], names: ['a', 'b c', "d'e"] });
+  assert.deepEqual(parseYaml('points:\n  - x: 1\n    y: 2\n  - {x: 3, y: 4}'),
+    { points: [{ x: 1, y: 2 }, { x: 3, y: 4 }] });
+  assert.deepEqual(parseYaml('{"a": [1, 2], "b": {"c": null}}'), { a: [1, 2], b: { c: null } });
+  assert.deepEqual(parseYaml('s: "tab\\there"\nt: true\nf: False\nn: ~'),
+    { s: 'tab\there', t: true, f: false, n: null });
+  assert.deepEqual(parseYaml('{a: 1,\n b: [2,\n 3]}'), { a: 1, b: [2, 3] });
+  assert.deepEqual(parseYaml(''), {});
+  assert.equal(parseYaml('big: 18446744073709551615').big, 18446744073709551615n);
+  assert.ok(Number.isNaN(parseYaml('x: .nan').x));
+});
+
+test('parseYaml round-trips formatYaml', () => {
+  const value = { a: { b: [1, 2], c: 'text', d: [{ e: 1 }, { e: 2 }] }, f: -0.5, g: [] };
+  assert.deepEqual(parseYaml(formatYaml(value)), value);
+});
+
+test('parseYaml errors say the line', () => {
+  assert.throws(() => parseYaml('a: 1\n  b: 2'), (e) => e instanceof YamlError && /^line 2: unexpected indentation/.test(e.message));
+  assert.throws(() => parseYaml('{a: 1'), /line 1: expected ',' or '}' in a \{\.\.\.\} mapping/);
+  assert.throws(() => parseYaml('a: 1\na: 2'), /line 2: the key 'a' appears twice/);
+  assert.throws(() => parseYaml("a: 'open"), /single-quoted string is not closed/);
+  assert.throws(() => parseYaml('a: 1\nnot a mapping'), /line 2: expected 'key: value'/);
+});
+
+test('parsed YAML encodes with the type descriptions', () => {
+  const value = parseYaml('tag: 3\nx: 1.5\nlabel: "hi"');
+  assert.deepEqual(registry.decode('cdr_test_msgs/msg/Inner', registry.encode('cdr_test_msgs/msg/Inner', value)),
+    { tag: 3, x: 1.5, label: 'hi' });
+});
+
+test('numericPaths lists plottable fields, getPath reads them', () => {
+  const paths = numericPaths(registry, 'cdr_test_msgs/msg/Nested');
+  assert.deepEqual(paths, ['lead', 'inner.tag', 'inner.x', 'strings.after', 'tail']);
+  assert.deepEqual(numericPaths(registry, 'cdr_test_msgs/msg/Arrays').slice(0, 4),
+    ['lead', 'f64s[0]', 'f64s[1]', 'bools[0]']);
+  const value = { inner: { x: 2.5 }, list: [{ v: 1n }] };
+  assert.equal(getPath(value, 'inner.x'), 2.5);
+  assert.equal(asNumber(getPath(value, 'list[0].v')), 1);
+  assert.equal(getPath(value, 'missing.x'), undefined);
+  assert.throws(() => getPath(value, 'a..b'), /is not a field path/);
+});
+
+test('TopicStats gives rate, jitter and bandwidth like ros2 topic hz/bw', () => {
+  const stats = new TopicStats({ window: 100 });
+  assert.equal(stats.summary(0), null);
+  for (let i = 0; i < 250; i++) stats.add(i * 10 + (i % 2), 100);  // 100 Hz with 1 ms jitter
+  const s = stats.summary(2500);
+  assert.equal(s.window, 100);
+  assert.ok(Math.abs(s.rate - 100) < 1, `rate ${s.rate}`);
+  assert.ok(Math.abs(s.min - 0.009) < 1e-9 && Math.abs(s.max - 0.011) < 1e-9);
+  assert.ok(Math.abs(s.std - 0.001) < 1e-6);
+  assert.ok(Math.abs(s.bytesPerSecond - 10000) < 200);
+  assert.equal(stats.total, 250);
+  assert.equal(formatBandwidth(10000), '10.00 KB/s');
+  assert.equal(formatBandwidth(2.5e6), '2.50 MB/s');
+});
+
+test('imageToRgba converts the common encodings', () => {
+  const rgb = imageToRgba({ width: 2, height: 1, encoding: 'rgb8', step: 6, is_bigendian: 0,
+    data: Uint8Array.of(1, 2, 3, 4, 5, 6) });
+  assert.deepEqual(Array.from(rgb.rgba), [1, 2, 3, 255, 4, 5, 6, 255]);
+  const bgr = imageToRgba({ width: 1, height: 2, encoding: 'bgr8', step: 4, is_bigendian: 0,
+    data: Uint8Array.of(1, 2, 3, 0, 7, 8, 9, 0) });
+  assert.deepEqual(Array.from(bgr.rgba), [3, 2, 1, 255, 9, 8, 7, 255]);
+  const mono16 = imageToRgba({ width: 1, height: 1, encoding: 'mono16', step: 2, is_bigendian: 0,
+    data: Uint8Array.of(0x00, 0x80) });
+  assert.deepEqual(Array.from(mono16.rgba), [128, 128, 128, 255]);
+  const f = new Uint8Array(8);
+  new DataView(f.buffer).setFloat32(0, 1, true);
+  new DataView(f.buffer).setFloat32(4, 3, true);
+  assert.deepEqual(Array.from(imageToRgba({ width: 2, height: 1, encoding: '32FC1', step: 8,
+    is_bigendian: 0, data: f }).rgba), [0, 0, 0, 255, 255, 255, 255, 255]);
+  assert.throws(() => imageToRgba({ width: 1, height: 1, encoding: 'yuv422', step: 2, data: new Uint8Array(2) }),
+    (e) => e instanceof ImageError && /encoding 'yuv422' is not shown/.test(e.message));
+  assert.throws(() => imageToRgba({ width: 4, height: 4, encoding: 'rgb8', step: 12, data: new Uint8Array(10) }),
+    /needs 48 bytes, the message has 10/);
+  assert.equal(compressedMimeType('jpeg'), 'image/jpeg');
+  assert.equal(compressedMimeType('rgb8; png compressed bgr8'), 'image/png');
+  assert.throws(() => compressedMimeType('tiff'), /'tiff' is not shown/);
+});
