@@ -29,6 +29,7 @@ var LibraryWasmBus = {
     moduleUrl: null,
     error: '',
     pending: [],
+    settled: false,
     // Unused since the wait loop services the main thread's call queue itself
     // (BusClient.service); kept false so waits never return -1.
     returnAfterWake: false,
@@ -57,11 +58,13 @@ var LibraryWasmBus = {
       WasmBus.ready();
     },
 
+    // Run fn once the bus is known (attached, or known to be missing).
     whenReady: function(fn) {
-      if (WasmBus.client) fn(); else WasmBus.pending.push(fn);
+      if (WasmBus.settled) fn(); else WasmBus.pending.push(fn);
     },
 
     ready: function() {
+      WasmBus.settled = true;
       var p = WasmBus.pending;
       WasmBus.pending = [];
       p.forEach(function(fn) { fn(); });
@@ -101,6 +104,12 @@ var LibraryWasmBus = {
         self.onmessage = function(e) {
           var d = e && e.data;
           if (d && d['cmd'] === 'wasmBus') {
+            if (!d['sab']) {
+              // The main thread has no bus: neither do we (contexts fail clearly).
+              WasmBus.error = d['error'];
+              removeRunDependency('wasm-bus');
+              return;
+            }
             WasmBus.moduleUrl = d['moduleUrl'];
             import(d['moduleUrl']).then(function(m) {
               WasmBus.client = m.BusClient.attach(d['sab'], d['pid']);
@@ -120,9 +129,10 @@ var LibraryWasmBus = {
       PThread.loadWasmModuleToWorker = function(worker) {
         var r = load.apply(this, arguments);
         WasmBus.whenReady(function() {
+          var c = WasmBus.client;
           worker.postMessage({
-            'cmd': 'wasmBus', 'sab': WasmBus.client.bus.sab, 'pid': WasmBus.client.pid,
-            'moduleUrl': WasmBus.moduleUrl,
+            'cmd': 'wasmBus', 'sab': c ? c.bus.sab : null, 'pid': c ? c.pid : 0,
+            'moduleUrl': WasmBus.moduleUrl, 'error': WasmBus.error,
           });
         });
         return r;
@@ -141,20 +151,23 @@ var LibraryWasmBus = {
 #if ENVIRONMENT_MAY_BE_NODE
       if (ENVIRONMENT_IS_NODE) {
         var url = WasmBus.locateModule();
-        if (!url) {
-          WasmBus.noBus();
+        if (url) {
+          addRunDependency('wasm-bus');
+          import(url).then(function(m) {
+            WasmBus.setClient(m.BusClient.createPrivate(), url);
+          }).catch(function(err) {
+            WasmBus.error = 'wasm_cpp: cannot create a private bus from ' + url + ': ' + err;
+            WasmBus.ready();
+          }).then(function() {
+            removeRunDependency('wasm-bus');
+          });
           return;
         }
-        addRunDependency('wasm-bus');
-        import(url).then(function(m) {
-          WasmBus.setClient(m.BusClient.createPrivate(), url);
-        }).catch(function(err) {
-          WasmBus.error = 'wasm_cpp: cannot create a private bus from ' + url + ': ' + err;
-        }).then(function() {
-          removeRunDependency('wasm-bus');
-        });
       }
 #endif
+      // No runtime gave a bus and none can be made: contexts fail with this message.
+      WasmBus.noBus();
+      WasmBus.ready();
     },
   },
 
