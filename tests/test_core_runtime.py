@@ -2,8 +2,10 @@
 # Licensed under the Apache License, Version 2.0
 
 """
-The wasm_js runtime around the nodes: the non-isolated page message, the
-Node.js runner (cli.mjs) and executables run alone (private bus).
+Test the wasm_js runtime around the nodes.
+
+The non-isolated page message, the Node.js runner (cli.mjs) and executables
+run alone (private bus).
 """
 
 import os
@@ -27,7 +29,7 @@ def test_page_without_isolation_says_which_headers_to_serve():
     reason = harness.browser_skip_reason()
     if reason:
         pytest.skip(reason)
-    page = harness.get_browser().call('isolation')
+    page = harness.get_browser().evaluate('/plain/page.html')
     assert page['isolated'] is False
     status = page['status']
     assert status.startswith('IsolationError: '), status

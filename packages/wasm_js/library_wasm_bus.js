@@ -47,6 +47,21 @@ var LibraryWasmBus = {
         WasmBus.hf64 = new Float64Array(u8.buffer);
       }
     },
+    // The views, renewed only when [ptr, end) lies beyond them (the heap grew;
+    // in a non-pthread build growth detaches the old buffer: length 0).
+    heapFor: function(end) {
+      if (!WasmBus.hu8 || end > WasmBus.hu8.length) WasmBus.heap();
+    },
+    // wasmTable.get() of the allocator functions, cached.
+    fnIndex: [0, 0],
+    fn: [null, null],
+    tableFn: function(slot, index) {
+      if (WasmBus.fnIndex[slot] !== index) {
+        WasmBus.fnIndex[slot] = index;
+        WasmBus.fn[slot] = wasmTable.get(index);
+      }
+      return WasmBus.fn[slot];
+    },
 
     fail: function(e) {
       WasmBus.error = (e && e.message) ? e.message : String(e);
@@ -276,7 +291,7 @@ var LibraryWasmBus = {
   wasm_bus_publish__deps: ['$WasmBus'],
   wasm_bus_publish: function(ep, data, len, timeoutMs, seq) {
     try {
-      WasmBus.heap();
+      WasmBus.heapFor(Math.max(data + len, seq + 8));
       var s = WasmBus.client.publish(ep, WasmBus.hu8.subarray(data, data + len), timeoutMs);
       if (seq) {
         WasmBus.hi32[seq >> 2] = s % 4294967296;
@@ -311,12 +326,12 @@ var LibraryWasmBus = {
       for (;;) {
         var len = c.takeBegin(ep, mode);
         if (len < 0) return 0;
-        var ptr = wasmTable.get(allocFn)(len > 0 ? len : 1, state);
+        var ptr = WasmBus.tableFn(0, allocFn)(len > 0 ? len : 1, state);
         if (!ptr) {
           WasmBus.error = 'take on \'' + c.endpointName(ep) + '\' failed: the allocator returned null for ' + len + ' bytes';
           return -10;
         }
-        WasmBus.heap(); // the allocator may have grown the heap
+        WasmBus.heapFor(Math.max(ptr + len, info + 72)); // the allocator may have grown the heap
         if (c.takeCopy(WasmBus.hu8, ptr)) {
           var i = c.info;
           var f64 = WasmBus.hf64;
@@ -339,7 +354,7 @@ var LibraryWasmBus = {
           w[o + 16] = ptr;
           return 1;
         }
-        wasmTable.get(deallocFn)(ptr, state);
+        WasmBus.tableFn(1, deallocFn)(ptr, state);
       }
     } catch (e) {
       return -WasmBus.fail(e);
@@ -390,6 +405,7 @@ var LibraryWasmBus = {
   wasm_bus_wait__deps: ['$WasmBus'],
   wasm_bus_wait: function(items, count, timeoutMs) {
     try {
+      // Guard condition items point anywhere in the heap: check the whole view.
       WasmBus.heap();
       var heap = WasmBus.hi32;
       return WasmBus.client.wait(heap, items >> 2, count, timeoutMs, heap, WasmBus.returnAfterWake);

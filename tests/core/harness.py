@@ -111,7 +111,7 @@ _BROWSER = None
 
 
 def get_build():
-    """The session's build (built on first use)."""
+    """Get the session's build (built on first use)."""
     global _BUILD
     if _BUILD is None:
         _BUILD = build()
@@ -119,7 +119,7 @@ def get_build():
 
 
 def get_browser():
-    """The session's browser (started on first use, stopped at exit)."""
+    """Get the session's browser (started on first use, stopped at exit)."""
     global _BROWSER
     if _BROWSER is None:
         core = get_build()
@@ -204,7 +204,7 @@ class Browser:
 
 
 def browser_skip_reason():
-    """Why browser tests cannot run here, or None."""
+    """Tell why browser tests cannot run here, or return None."""
     if not Path(CHROMIUM).is_file() and not shutil.which(CHROMIUM):
         return f'no Chromium at {CHROMIUM} (set COLCON_WASM_CHROMIUM)'
     if not PLAYWRIGHT.is_dir():
@@ -213,13 +213,13 @@ def browser_skip_reason():
 
 
 def results(run, name):
-    """The RESULT key=values of process `name` of a scenario run."""
+    """Get the RESULT key=values of process `name` of a scenario run."""
     assert run['ok'], f'scenario failed: {run["error"]}\n{_dump(run)}'
     return run['processes'][name]['results']
 
 
 def exit_of(run, name):
-    """The exit record of process `name`."""
+    """Get the exit record of process `name`."""
     return run['processes'][name]['exit']
 
 
@@ -233,5 +233,5 @@ def _dump(run):
 
 
 def explain(run):
-    """A readable dump of a run, for assertion messages."""
+    """Dump a run readably, for assertion messages."""
     return _dump(run)

@@ -305,6 +305,12 @@ const SCENARIOS = {
     await exits(ctx, ['deadline']);
   },
 
+  /** ignore_local_publications, service/client/event callbacks, the C++ QoS check. */
+  async misc(ctx) {
+    await start(ctx, 'misc', 'misc', {});
+    await exits(ctx, ['misc']);
+  },
+
   /** Separate ROS_DOMAIN_IDs never see each other. */
   async domains(ctx) {
     await start(ctx, 'sub', 'sub', { count: 1, 'timeout-ms': 1500, topic: '/dom' }, { env: { ROS_DOMAIN_ID: '7' } });

@@ -20,6 +20,7 @@
 //   bench_node flood --size S --count N --subs K       publishes as fast as it can
 //   bench_node sink  --size S --count N                counts, checks order
 //   bench_node hello                                   publishes one message at once
+//   bench_node loop  --size S --count N                publish/take cost in one thread
 //
 // Each prints "RESULT key=value ...".
 
@@ -234,6 +235,44 @@ int sink()
   return 0;
 }
 
+// Per-operation cost without wake-ups: publish a batch, then take it, in one thread.
+int loop()
+{
+  Node n("bench_loop");
+  const size_t size = static_cast<size_t>(opt("size", 1024));
+  const long count = opt("count", 200000);  // NOLINT(runtime/int)
+  auto pub = must(wasm_cpp::Publisher::make(n.node, "/bench/loop", "bench/msg/Bytes", flood_qos()), "pub");
+  auto sub = must(wasm_cpp::Subscription::make(n.node, "/bench/loop", "bench/msg/Bytes", flood_qos()), "sub");
+  std::vector<uint8_t> payload(size, 0x11);
+  Message m;
+  MessageInfo info;
+  double pub_s = 0;
+  double take_s = 0;
+  const long batch = 256;  // NOLINT(runtime/int)
+  for (long done = 0; done < count; done += batch) {  // NOLINT(runtime/int)
+    auto t0 = Clock::now();
+    for (long i = 0; i < batch; ++i) {  // NOLINT(runtime/int)
+      pub->publish(payload.data(), payload.size());
+    }
+    auto t1 = Clock::now();
+    for (long i = 0; i < batch; ++i) {  // NOLINT(runtime/int)
+      bool taken = false;
+      sub->take(&m, &info, &taken);
+      if (!taken) {
+        std::printf("ERROR loop: message missing\n");
+        return 4;
+      }
+    }
+    auto t2 = Clock::now();
+    pub_s += std::chrono::duration<double>(t1 - t0).count();
+    take_s += std::chrono::duration<double>(t2 - t1).count();
+  }
+  std::printf(
+    "RESULT size=%zu publish_ns=%.0f take_ns=%.0f\n", size, pub_s * 1e9 / count,
+    take_s * 1e9 / count);
+  return 0;
+}
+
 int hello()
 {
   Node n("bench_hello");
@@ -261,6 +300,7 @@ int main(int argc, char ** argv)
   if (role == "flood") {return flood();}
   if (role == "sink") {return sink();}
   if (role == "hello") {return hello();}
+  if (role == "loop") {return loop();}
   std::printf("ERROR unknown role %s\n", role.c_str());
   return 2;
 }
