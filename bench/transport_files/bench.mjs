@@ -53,6 +53,7 @@ class Bench {
     const results = {};
     const waiters = [];
     const lines = [];
+    let exited = null;
     const proc = await rt.spawn({
       url: this.env.exe,
       args,
@@ -69,10 +70,15 @@ class Bench {
         }
       },
       onExit: (e) => {
+        exited = e;
         for (const w of waiters) w.reject(new Error(`${role} exited (${e.reason || e.code}) before '${w.key}': ${lines.join(' | ')}`));
       },
     });
-    const wait = (key) => (key in results ? Promise.resolve(results[key]) : new Promise((resolve, reject) => waiters.push({ key, resolve, reject })));
+    const wait = (key) => {
+      if (key in results) return Promise.resolve(results[key]);
+      if (exited) return Promise.reject(new Error(`${role} exited (${exited.reason || exited.code}) without '${key}': ${lines.join(' | ')}`));
+      return new Promise((resolve, reject) => waiters.push({ key, resolve, reject }));
+    };
     return { proc, results, wait };
   }
 
@@ -255,33 +261,43 @@ export async function runAll(env, options = {}) {
   const out = { latency: { ours: {}, raw: {}, poll: {} }, throughput: {}, start: {} };
   const q = options.quick ? 0.1 : 1;
   const log = env.log || (() => {});
-  for (const size of SIZES) {
-    log(`latency ${size} B`);
-    out.latency.ours[size] = await b.oursLatency(size);
-    out.latency.raw[size] = await b.rawLatency(size);
-    out.latency.poll[size] = await b.pollLatency(size);
+  const parts = options.parts || ['latency', 'throughput', 'fanout', 'start'];
+  if (parts.includes('latency')) {
+    for (const size of SIZES) {
+      log(`latency ${size} B`);
+      out.latency.ours[size] = await b.oursLatency(size);
+      out.latency.raw[size] = await b.rawLatency(size);
+      out.latency.poll[size] = await b.pollLatency(size);
+    }
   }
-  const n1k = Math.round(300000 * q);
-  const n1m = Math.round(400 * q);
-  log('throughput 1 KiB');
-  out.throughput.ours_1k = await b.oursThroughput(1024, n1k, 1);
-  out.throughput.raw_1k = await b.rawThroughput(1024, n1k, 1);
-  out.throughput.poll_1k = await b.pollThroughput(1024, 1000, 2000);
-  log('throughput 1 MiB');
-  out.throughput.ours_1m = await b.oursThroughput(1024 * 1024, n1m, 1);
-  out.throughput.raw_1m = await b.rawThroughput(1024 * 1024, n1m, 1);
-  log('fan-out to 4');
-  out.throughput.ours_fanout = await b.oursThroughput(1024, Math.round(100000 * q), 4);
-  out.throughput.raw_fanout = await b.rawThroughput(1024, Math.round(100000 * q), 4);
-  log('node start');
-  const exes = { pthread: env.exe };
-  if (env.exeNoPthread) exes.nopthread = env.exeNoPthread;
-  for (const [build, exe] of Object.entries(exes)) {
-    out.start[build] = {};
-    for (const mode of ['cold', 'shared', 'warm']) {
-      const samples = [];
-      for (let i = 0; i < 5; i++) samples.push(await b.oursStart(mode, exe));
-      out.start[build][mode] = stats(samples);
+  if (parts.includes('throughput')) {
+    const n1k = Math.round(300000 * q);
+    const n1m = Math.round(400 * q);
+    log('throughput 1 KiB');
+    out.throughput.ours_1k = await b.oursThroughput(1024, n1k, 1);
+    out.throughput.raw_1k = await b.rawThroughput(1024, n1k, 1);
+    out.throughput.poll_1k = await b.pollThroughput(1024, 1000, 2000);
+    log('throughput 1 MiB');
+    out.throughput.ours_1m = await b.oursThroughput(1024 * 1024, n1m, 1);
+    out.throughput.raw_1m = await b.rawThroughput(1024 * 1024, n1m, 1);
+  }
+  if (parts.includes('fanout')) {
+    log('fan-out to 4: ours');
+    out.throughput.ours_fanout = await b.oursThroughput(1024, Math.round(100000 * q), 4);
+    log('fan-out to 4: raw ring');
+    out.throughput.raw_fanout = await b.rawThroughput(1024, Math.round(100000 * q), 4);
+  }
+  if (parts.includes('start')) {
+    log('node start');
+    const exes = { pthread: env.exe };
+    if (env.exeNoPthread) exes.nopthread = env.exeNoPthread;
+    for (const [build, exe] of Object.entries(exes)) {
+      out.start[build] = {};
+      for (const mode of ['cold', 'shared', 'warm']) {
+        const samples = [];
+        for (let i = 0; i < 5; i++) samples.push(await b.oursStart(mode, exe));
+        out.start[build][mode] = stats(samples);
+      }
     }
   }
   return out;

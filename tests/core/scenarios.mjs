@@ -269,11 +269,12 @@ const SCENARIOS = {
   /** Graph queries from C++ and from the runtime; duplicate node names warn. */
   async graph(ctx) {
     await start(ctx, 'peer', 'graph', { name: 'peer', 'wait-signal': '/test/graph_done' });
-    await start(ctx, 'grapher', 'graph', { peer: 'peer', signal: '/test/graph_done', ns: '/' });
+    await result(ctx, 'peer', 'nodes');
+    await start(ctx, 'grapher', 'graph', { 'want-pubs': 2, signal: '/test/graph_done', ns: '/' });
     await exits(ctx, ['grapher', 'peer']);
     await start(ctx, 'dup1', 'graph', { name: 'twin', 'wait-signal': '/test/twin_done' });
     await result(ctx, 'dup1', 'nodes');
-    await start(ctx, 'dup2', 'graph', { name: 'twin', signal: '/test/twin_done' });
+    await start(ctx, 'dup2', 'graph', { name: 'twin', signal: '/test/twin_done', 'want-pubs': 2 });
     await exits(ctx, ['dup1', 'dup2']);
   },
 

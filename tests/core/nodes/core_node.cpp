@@ -752,19 +752,14 @@ int role_graph()
   auto srv = must(
     Service::make(e.node, "/graph/srv", "test_msgs/srv/Echo", wasm_cpp::services_default_qos()),
     "srv");
-  const std::string peer = opt("peer", "");
-  if (!peer.empty()) {
-    wait_graph(e, [&]() {
-        std::vector<wasm_cpp::NodeInfo> nodes;
-        wasm_cpp::graph::get_nodes(*e.ctx, &nodes);
-        for (auto & n : nodes) {
-          if (n.name == peer) {
-            return true;
-          }
-        }
-        return false;
-      }, 20000);
-  }
+  // Wait until the peers' publishers are in the graph (a node appears before its endpoints).
+  const size_t want = static_cast<size_t>(opt_int("want-pubs", 1));
+  wait_graph(e, [&]() {
+      size_t n = 0;
+      wasm_cpp::graph::count_endpoints(
+        *e.ctx, "/graph/topic", wasm_cpp::EndpointKind::kPublisher, &n);
+      return n >= want;
+    }, 20000);
   std::vector<wasm_cpp::NodeInfo> nodes;
   wasm_cpp::graph::get_nodes(*e.ctx, &nodes);
   std::string names;
@@ -796,11 +791,14 @@ int role_graph()
   out("RESULT nodes=%s", names.c_str());
   out("RESULT topics=%s", ts.c_str());
   out("RESULT services=%s", ss.c_str());
+  bool gid_ok = false;
+  for (auto & info : pubs) {
+    gid_ok = gid_ok || (info.gid == pub->gid() && info.node_name == e.node->name());
+  }
   out(
     "RESULT pub_count=%zu pub_depth=%zu pub_gid_ok=%d sub_count=%zu missing_code=%d by_node=%s",
-    pubs.size(), pubs.empty() ? 0 : pubs[0].qos.depth,
-    !pubs.empty() && pubs[0].gid == pub->gid() ? 1 : 0, n_subs, static_cast<int>(missing.code()),
-    by_node.empty() ? "-" : by_node[0].name.c_str());
+    pubs.size(), pubs.empty() ? 0 : pubs[0].qos.depth, gid_ok ? 1 : 0, n_subs,
+    static_cast<int>(missing.code()), by_node.empty() ? "-" : by_node[0].name.c_str());
   if (!opt("signal").empty()) {
     send_signal(e, opt("signal"));
   }
