@@ -102,3 +102,24 @@ def test_executable_alone_without_wasm_js_gets_a_clear_error(tmp_path):
                           env=env, cwd=tmp_path)
     assert done.returncode == 0, done.stdout + done.stderr
     assert Path(tmp_path / 'core_node.js').is_file()
+
+
+def test_log_severity_is_read_through_ansi_colours():
+    # rcutils colours console lines because isatty() is true under Emscripten
+    runtime = Path(__file__).resolve().parent.parent / 'packages' / \
+        'wasm_js' / 'src' / 'runtime.mjs'
+    script = (
+        'import("' + runtime.as_uri() + '").then((m) => {'
+        ' for (const line of ["\\x1b[33m[WARN] [1.5] [n]: careful\\x1b[0m",'
+        ' "\\x1b[0m[INFO] [1.5] [n]: hello\\x1b[0m", "plain"]) {'
+        ' const text = m.stripAnsi(line);'
+        ' console.log(JSON.stringify([text, m.severityOf("stderr", text)]));'
+        ' } });')
+    done = subprocess.run(['node', '--input-type=module', '-e', script],
+                          capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.splitlines() == [
+        '["[WARN] [1.5] [n]: careful","WARN"]',
+        '["[INFO] [1.5] [n]: hello","INFO"]',
+        '["plain","ERROR"]',
+    ]

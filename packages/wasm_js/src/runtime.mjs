@@ -30,6 +30,17 @@ const ISOLATION_HELP =
   '(`colcon-wasm serve` does), and load it over http://localhost or https.';
 
 const SEVERITY_RE = /^\[(DEBUG|INFO|WARN|ERROR|FATAL)\]/;
+// rcutils colours its console output when isatty() says yes, which it does
+// under Emscripten: "\x1b[33m[WARN] ...\x1b[0m".
+const ANSI_SGR_RE = /\x1b\[[0-9;]*m/g;
+
+/**
+ * Remove ANSI colour codes (SGR sequences) from a log line.
+ * @param {string} text
+ */
+export function stripAnsi(text) {
+  return text.indexOf('\x1b') < 0 ? text : text.replace(ANSI_SGR_RE, '');
+}
 
 /**
  * Parse the severity of a log line: the ROS tag when there is one
@@ -75,7 +86,8 @@ export class NodeProcess {
       const onLog = this._options.onLog;
       if (onLog) {
         try {
-          onLog({ stream: m.stream, severity: severityOf(m.stream, m.text), text: m.text, name: this.name, pid: this.id });
+          const text = stripAnsi(m.text);
+          onLog({ stream: m.stream, severity: severityOf(m.stream, text), text, name: this.name, pid: this.id });
         } catch (e) {
           console.error(`onLog of '${this.name}' threw:`, e);
         }
