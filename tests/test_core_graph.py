@@ -24,9 +24,11 @@ def test_graph_queries_nodes_topics_services_endpoints(platform):
     assert g['by_node'] == '/graph/srv', why
     peer = harness.results(run, 'peer')
     assert peer['pub_gid_ok'] == '1', why
-    # Two nodes with one name: both exist, the second one is warned.
+    # Two nodes with one name: both exist, the second one is warned, and
+    # the runtime reads the ROS console format's severity.
     dup2 = run['processes']['dup2']['lines']
-    assert any("WARN node name '/twin' is already in use" in line
+    assert any(line.startswith('WARN [WARN] [') and
+               "[twin]: node name '/twin' is already in use" in line
                for line in dup2), why
     assert harness.results(run, 'dup2')['nodes'] == '/twin,/twin', why
 

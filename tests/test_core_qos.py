@@ -60,3 +60,24 @@ def test_oversized_and_malformed_input_get_clear_errors(platform):
     assert 'invalid QoS reliability "sometimes"' in js['bad_qos']['message']
     assert js['oversized']['code'] == int(BAD_ALLOC)
     assert run['extra']['js_roundtrip'] == [[1, 2, 3]]
+
+
+@pytest.mark.parametrize('platform', PLATFORMS)
+def test_ignore_local_publications_callbacks_and_qos_check(platform):
+    run = harness.run(platform, 'misc')
+    r = harness.results(run, 'misc')
+    why = harness.explain(run)
+    # A subscription that ignores local publications does not match the
+    # publisher of its own context; one of another context does.
+    assert (r['ignore_local_matched'], r['deaf_has_data']) == ('0', '0'), why
+    assert (r['other_context_matched'], r['hears_has_data']) == ('1', '1'), why
+    # New-data callbacks of a service, a client and an event (listener thread).
+    assert r['request_events'] == '3' and r['response_events'] == '3', why
+    assert r['event_events'] == '1', why
+    # wasm_cpp::check_qos_compatible: name:result(0 ok, 1 warning, 2 error):policy
+    checks = dict(c.split(':', 1) for c in r['qos_checks'].split(','))
+    assert checks == {
+        'same': '0:0', 'be_pub_rel_sub': '2:16', 'rel_pub_be_sub': '0:0',
+        'vol_pub_tl_sub': '2:2', 'no_deadline_pub': '2:4',
+        'longer_deadline_pub': '2:4', 'auto_pub_manual_sub': '2:8',
+        'sysdef_pub_rel_sub': '1:16'}, why

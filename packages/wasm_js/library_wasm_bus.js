@@ -29,9 +29,39 @@ var LibraryWasmBus = {
     moduleUrl: null,
     error: '',
     pending: [],
+    settled: false,
     // Unused since the wait loop services the main thread's call queue itself
     // (BusClient.service); kept false so waits never return -1.
     returnAfterWake: false,
+
+    // Views of the wasm heap, renewed when it grows. Each HEAP* access in a
+    // pthread build checks wasmMemory.buffer (~60 ns); hot paths use these.
+    hu8: null,
+    hi32: null,
+    hf64: null,
+    heap: function() {
+      var u8 = HEAPU8;
+      if (WasmBus.hu8 !== u8) {
+        WasmBus.hu8 = u8;
+        WasmBus.hi32 = new Int32Array(u8.buffer);
+        WasmBus.hf64 = new Float64Array(u8.buffer);
+      }
+    },
+    // The views, renewed only when [ptr, end) lies beyond them (the heap grew;
+    // in a non-pthread build growth detaches the old buffer: length 0).
+    heapFor: function(end) {
+      if (!WasmBus.hu8 || end > WasmBus.hu8.length) WasmBus.heap();
+    },
+    // wasmTable.get() of the allocator functions, cached.
+    fnIndex: [0, 0],
+    fn: [null, null],
+    tableFn: function(slot, index) {
+      if (WasmBus.fnIndex[slot] !== index) {
+        WasmBus.fnIndex[slot] = index;
+        WasmBus.fn[slot] = wasmTable.get(index);
+      }
+      return WasmBus.fn[slot];
+    },
 
     fail: function(e) {
       WasmBus.error = (e && e.message) ? e.message : String(e);
@@ -57,11 +87,13 @@ var LibraryWasmBus = {
       WasmBus.ready();
     },
 
+    // Run fn once the bus is known (attached, or known to be missing).
     whenReady: function(fn) {
-      if (WasmBus.client) fn(); else WasmBus.pending.push(fn);
+      if (WasmBus.settled) fn(); else WasmBus.pending.push(fn);
     },
 
     ready: function() {
+      WasmBus.settled = true;
       var p = WasmBus.pending;
       WasmBus.pending = [];
       p.forEach(function(fn) { fn(); });
@@ -101,6 +133,12 @@ var LibraryWasmBus = {
         self.onmessage = function(e) {
           var d = e && e.data;
           if (d && d['cmd'] === 'wasmBus') {
+            if (!d['sab']) {
+              // The main thread has no bus: neither do we (contexts fail clearly).
+              WasmBus.error = d['error'];
+              removeRunDependency('wasm-bus');
+              return;
+            }
             WasmBus.moduleUrl = d['moduleUrl'];
             import(d['moduleUrl']).then(function(m) {
               WasmBus.client = m.BusClient.attach(d['sab'], d['pid']);
@@ -120,9 +158,10 @@ var LibraryWasmBus = {
       PThread.loadWasmModuleToWorker = function(worker) {
         var r = load.apply(this, arguments);
         WasmBus.whenReady(function() {
+          var c = WasmBus.client;
           worker.postMessage({
-            'cmd': 'wasmBus', 'sab': WasmBus.client.bus.sab, 'pid': WasmBus.client.pid,
-            'moduleUrl': WasmBus.moduleUrl,
+            'cmd': 'wasmBus', 'sab': c ? c.bus.sab : null, 'pid': c ? c.pid : 0,
+            'moduleUrl': WasmBus.moduleUrl, 'error': WasmBus.error,
           });
         });
         return r;
@@ -141,20 +180,23 @@ var LibraryWasmBus = {
 #if ENVIRONMENT_MAY_BE_NODE
       if (ENVIRONMENT_IS_NODE) {
         var url = WasmBus.locateModule();
-        if (!url) {
-          WasmBus.noBus();
+        if (url) {
+          addRunDependency('wasm-bus');
+          import(url).then(function(m) {
+            WasmBus.setClient(m.BusClient.createPrivate(), url);
+          }).catch(function(err) {
+            WasmBus.error = 'wasm_cpp: cannot create a private bus from ' + url + ': ' + err;
+            WasmBus.ready();
+          }).then(function() {
+            removeRunDependency('wasm-bus');
+          });
           return;
         }
-        addRunDependency('wasm-bus');
-        import(url).then(function(m) {
-          WasmBus.setClient(m.BusClient.createPrivate(), url);
-        }).catch(function(err) {
-          WasmBus.error = 'wasm_cpp: cannot create a private bus from ' + url + ': ' + err;
-        }).then(function() {
-          removeRunDependency('wasm-bus');
-        });
       }
 #endif
+      // No runtime gave a bus and none can be made: contexts fail with this message.
+      WasmBus.noBus();
+      WasmBus.ready();
     },
   },
 
@@ -249,10 +291,11 @@ var LibraryWasmBus = {
   wasm_bus_publish__deps: ['$WasmBus'],
   wasm_bus_publish: function(ep, data, len, timeoutMs, seq) {
     try {
-      var s = WasmBus.client.publish(ep, HEAPU8.subarray(data, data + len), timeoutMs);
+      WasmBus.heapFor(Math.max(data + len, seq + 8));
+      var s = WasmBus.client.publish(ep, WasmBus.hu8.subarray(data, data + len), timeoutMs);
       if (seq) {
-        HEAPU32[seq >> 2] = s % 4294967296;
-        HEAPU32[(seq >> 2) + 1] = Math.floor(s / 4294967296);
+        WasmBus.hi32[seq >> 2] = s % 4294967296;
+        WasmBus.hi32[(seq >> 2) + 1] = Math.floor(s / 4294967296);
       }
       return 0;
     } catch (e) {
@@ -283,29 +326,35 @@ var LibraryWasmBus = {
       for (;;) {
         var len = c.takeBegin(ep, mode);
         if (len < 0) return 0;
-        var ptr = wasmTable.get(allocFn)(len > 0 ? len : 1, state);
+        var ptr = WasmBus.tableFn(0, allocFn)(len > 0 ? len : 1, state);
         if (!ptr) {
           WasmBus.error = 'take on \'' + c.endpointName(ep) + '\' failed: the allocator returned null for ' + len + ' bytes';
           return -10;
         }
-        if (c.takeCopy(HEAPU8, ptr)) {
+        WasmBus.heapFor(Math.max(ptr + len, info + 72)); // the allocator may have grown the heap
+        if (c.takeCopy(WasmBus.hu8, ptr)) {
           var i = c.info;
-          var w = info >> 2;
-          HEAPF64[info >> 3] = i.sourceTime;
-          HEAPF64[(info >> 3) + 1] = i.receivedTime;
-          HEAP32[w + 4] = i.pubSeqLo;
-          HEAP32[w + 5] = i.pubSeqHi;
-          HEAP32[w + 6] = i.recvSeqLo;
-          HEAP32[w + 7] = i.recvSeqHi;
-          HEAP32.set(i.gid, w + 8);
-          HEAP32[w + 12] = i.reqLo;
-          HEAP32[w + 13] = i.reqHi;
-          HEAP32[w + 14] = i.sameProcess ? 1 : 0;
-          HEAP32[w + 15] = len;
-          HEAP32[w + 16] = ptr;
+          var f64 = WasmBus.hf64;
+          var w = WasmBus.hi32;
+          var o = info >> 2;
+          f64[info >> 3] = i.sourceTime;
+          f64[(info >> 3) + 1] = i.receivedTime;
+          w[o + 4] = i.pubSeqLo;
+          w[o + 5] = i.pubSeqHi;
+          w[o + 6] = i.recvSeqLo;
+          w[o + 7] = i.recvSeqHi;
+          w[o + 8] = i.gid[0];
+          w[o + 9] = i.gid[1];
+          w[o + 10] = i.gid[2];
+          w[o + 11] = i.gid[3];
+          w[o + 12] = i.reqLo;
+          w[o + 13] = i.reqHi;
+          w[o + 14] = i.sameProcess ? 1 : 0;
+          w[o + 15] = len;
+          w[o + 16] = ptr;
           return 1;
         }
-        wasmTable.get(deallocFn)(ptr, state);
+        WasmBus.tableFn(1, deallocFn)(ptr, state);
       }
     } catch (e) {
       return -WasmBus.fail(e);
@@ -356,7 +405,9 @@ var LibraryWasmBus = {
   wasm_bus_wait__deps: ['$WasmBus'],
   wasm_bus_wait: function(items, count, timeoutMs) {
     try {
-      var heap = HEAP32;
+      // Guard condition items point anywhere in the heap: check the whole view.
+      WasmBus.heap();
+      var heap = WasmBus.hi32;
       return WasmBus.client.wait(heap, items >> 2, count, timeoutMs, heap, WasmBus.returnAfterWake);
     } catch (e) {
       return -100 - WasmBus.fail(e);
@@ -367,8 +418,8 @@ var LibraryWasmBus = {
   wasm_bus_listen__deps: ['$WasmBus'],
   wasm_bus_listen: function(items, count, timeoutMs) {
     try {
-      var heap = HEAP32;
-      return WasmBus.client.listen(heap, items >> 2, count, timeoutMs, WasmBus.returnAfterWake);
+      WasmBus.heap();
+      return WasmBus.client.listen(WasmBus.hi32, items >> 2, count, timeoutMs, WasmBus.returnAfterWake);
     } catch (e) {
       return -100 - WasmBus.fail(e);
     }
@@ -384,15 +435,17 @@ var LibraryWasmBus = {
   wasm_bus_event_status: function(ep, type, take, status) {
     try {
       var s = WasmBus.client.eventStatus(ep, type, take != 0);
+      WasmBus.heap();
+      var h = WasmBus.hi32;
       var w = status >> 2;
-      HEAP32[w] = s.changed ? 1 : 0;
-      HEAP32[w + 1] = s.total;
-      HEAP32[w + 2] = s.change;
-      HEAP32[w + 3] = s.alive;
-      HEAP32[w + 4] = s.notAlive;
-      HEAP32[w + 5] = s.aliveChange;
-      HEAP32[w + 6] = s.notAliveChange;
-      HEAP32[w + 7] = s.policy;
+      h[w] = s.changed ? 1 : 0;
+      h[w + 1] = s.total;
+      h[w + 2] = s.change;
+      h[w + 3] = s.alive;
+      h[w + 4] = s.notAlive;
+      h[w + 5] = s.aliveChange;
+      h[w + 6] = s.notAliveChange;
+      h[w + 7] = s.policy;
       return 0;
     } catch (e) {
       return WasmBus.fail(e);

@@ -1,17 +1,19 @@
 // Copyright 2026 The colcon-wasm authors. Licensed under the Apache License 2.0.
 
 /**
- * Headless Chromium for the core tests: serves the test page with
- * COOP/COEP, then answers JSON-line commands on stdin:
+ * Headless Chromium for the core tests and bench/transport: serves folders
+ * (with COOP/COEP, or without for --plain routes), then answers JSON-line
+ * commands on stdin:
  *
- *   {"id": 1, "cmd": "scenario", "name": "lossless"}  -> {"id": 1, "result": {...}}
- *   {"id": 2, "cmd": "isolation"}                     -> {"id": 2, "result": {"status": ..., "isolated": false}}
+ *   {"id": 1, "cmd": "evaluate", "url": "/core/page.html", "expr": "runScenario('x')"}
+ *       -> {"id": 1, "result": {"value": ..., "status": ..., "isolated": ..., "console": [...]}}
  *
- *   node browser_driver.mjs WASM_JS_SHARE_DIR NODES_DIR
+ *   node browser_driver.mjs --route /prefix/=DIR... [--plain /prefix/=DIR]...
  *
- * playwright-core comes from tests/js (npm ci there); Chromium is the
- * system's (COLCON_WASM_CHROMIUM, default /usr/bin/chromium); nothing is
- * downloaded.
+ * Each command opens a fresh page, waits for `window.pageReady`, evaluates
+ * the expression (awaiting a promise) and closes the page. playwright-core
+ * comes from tests/js (npm ci there); Chromium is the system's
+ * (COLCON_WASM_CHROMIUM, default /usr/bin/chromium); nothing is downloaded.
  */
 
 import fs from 'node:fs';
@@ -26,17 +28,20 @@ const here = path.dirname(fileURLToPath(import.meta.url));
 const require = createRequire(path.join(here, '..', 'js', 'package.json'));
 const { chromium } = require('playwright-core');
 
-const [shareDir, nodesDir] = process.argv.slice(2);
 const TYPES = {
   '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript',
   '.wasm': 'application/wasm', '.json': 'application/json',
 };
-const ROUTES = [
-  ['/wasm_js/', shareDir, true],
-  ['/nodes/', nodesDir, true],
-  ['/core/', here, true],
-  ['/plain/', here, false],
-];
+const ROUTES = [];
+const argv = process.argv.slice(2);
+for (let i = 0; i < argv.length; i += 2) {
+  const [prefix, dir] = (argv[i + 1] || '').split('=');
+  if ((argv[i] !== '--route' && argv[i] !== '--plain') || !prefix || !dir) {
+    process.stderr.write('usage: node browser_driver.mjs --route /prefix/=DIR... [--plain /prefix/=DIR]...\n');
+    process.exit(2);
+  }
+  ROUTES.push([prefix, path.resolve(dir), argv[i] === '--route']);
+}
 
 const server = http.createServer((req, res) => {
   const url = new URL(req.url, 'http://localhost');
@@ -86,30 +91,18 @@ async function openPage(url) {
 }
 
 async function handle(msg) {
-  if (msg.cmd === 'scenario') {
-    const { page, console } = await openPage(`${base}/core/page.html`);
-    try {
-      const status = await page.textContent('#status');
-      if (status !== 'ready') return { ok: false, error: `page not ready: ${status}`, console };
-      const result = await page.evaluate((name) => window.runScenario(name), msg.name);
-      return { ...result, console };
-    } finally {
-      await page.close();
-    }
+  if (msg.cmd !== 'evaluate') throw new Error(`unknown command ${JSON.stringify(msg.cmd)}`);
+  const { page, console } = await openPage(new URL(msg.url, base).href);
+  try {
+    return {
+      status: await page.textContent('#status'),
+      isolated: await page.evaluate('crossOriginIsolated'),
+      value: msg.expr ? await page.evaluate(msg.expr) : null,
+      console,
+    };
+  } finally {
+    await page.close();
   }
-  if (msg.cmd === 'isolation') {
-    const { page, console } = await openPage(`${base}/plain/page.html`);
-    try {
-      return {
-        status: await page.textContent('#status'),
-        isolated: await page.evaluate('crossOriginIsolated'),
-        console,
-      };
-    } finally {
-      await page.close();
-    }
-  }
-  throw new Error(`unknown command ${JSON.stringify(msg.cmd)}`);
 }
 
 async function shutdown(code) {

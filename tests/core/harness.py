@@ -34,8 +34,8 @@ CHROMIUM = os.environ.get('COLCON_WASM_CHROMIUM', '/usr/bin/chromium')
 PLAYWRIGHT = REPO / 'tests' / 'js' / 'node_modules' / 'playwright-core'
 
 # Everything that changes what the build produces.
-_INPUTS = ['packages/wasm_cpp', 'packages/wasm_js', 'tests/core/nodes',
-           'toolchains', 'templates/glue', 'colcon_wasm']
+_INPUTS = ['packages/wasm_cpp', 'packages/wasm_js', 'toolchains',
+           'templates/glue', 'colcon_wasm']
 
 
 def _emcc_version():
@@ -60,24 +60,34 @@ def _cache_root():
 
 
 class CoreBuild:
-    """The built test executable and the installed wasm_js runtime."""
+    """A built package of test executables and the installed wasm_js runtime."""
 
-    def __init__(self, workspace):
+    def __init__(self, workspace, package='core_test_nodes'):
         """Describe the install space of a finished build."""
         install = Path(workspace) / 'install_wasm'
         self.workspace = Path(workspace)
         self.share = install / 'wasm_js' / 'share' / 'wasm_js'
         self.src = self.share / 'src'
-        self.bin = install / 'core_test_nodes' / 'bin'
+        self.bin = install / package / 'bin'
         self.core_node = self.bin / 'core_node.js'
 
 
-def build():
-    """Build (or reuse) the core test nodes; return a CoreBuild."""
+def build(source=HERE / 'nodes', package='core_test_nodes', colcon_args=()):
+    """
+    Build (or reuse) a package of wasm_cpp executables with colcon build --wasm.
+
+    :param source: the package folder (a plain CMake project)
+    :param package: its project() name
+    :param colcon_args: more `colcon build` arguments (e.g. --wasm-no-pthread)
+    :returns: a CoreBuild
+    """
     digest = hashlib.sha256()
+    digest.update(repr(list(colcon_args)).encode())
     for rel in _INPUTS:
         digest.update(rel.encode())
         digest.update(tree_digest(REPO / rel).encode())
+    digest.update(str(source).encode())
+    digest.update(tree_digest(source).encode())
     digest.update(_emcc_version().encode())
     key = digest.hexdigest()[:20]
     root = _cache_root()
@@ -87,12 +97,12 @@ def build():
         fcntl.flock(lock, fcntl.LOCK_EX)
         if not (target / 'done').exists():
             shutil.rmtree(target, ignore_errors=True)
-            source = target / 'src' / 'core_test_nodes'
-            shutil.copytree(REPO / 'tests' / 'core' / 'nodes', source)
-            colcon(target, 'build', '--wasm', env=_env(), timeout=1800)
+            shutil.copytree(source, target / 'src' / package)
+            colcon(target, 'build', '--wasm', *colcon_args, env=_env(),
+                   timeout=1800)
             (target / 'done').write_text(key)
-    result = CoreBuild(target)
-    assert result.core_node.is_file(), f'{result.core_node} was not built'
+    result = CoreBuild(target, package)
+    assert result.bin.is_dir(), f'{result.bin} was not built'
     return result
 
 
@@ -101,7 +111,7 @@ _BROWSER = None
 
 
 def get_build():
-    """The session's build (built on first use)."""
+    """Get the session's build (built on first use)."""
     global _BUILD
     if _BUILD is None:
         _BUILD = build()
@@ -109,10 +119,13 @@ def get_build():
 
 
 def get_browser():
-    """The session's browser (started on first use, stopped at exit)."""
+    """Get the session's browser (started on first use, stopped at exit)."""
     global _BROWSER
     if _BROWSER is None:
-        _BROWSER = Browser(get_build())
+        core = get_build()
+        _BROWSER = Browser(
+            [('/wasm_js/', core.share), ('/nodes/', core.bin),
+             ('/core/', HERE)], plain=[('/plain/', HERE)])
         atexit.register(_BROWSER.close)
     return _BROWSER
 
@@ -144,11 +157,15 @@ def run_node(core, scenario, timeout=240):
 class Browser:
     """One headless Chromium (via browser_driver.mjs) for a test session."""
 
-    def __init__(self, core):
-        """Start the driver; raises when Chromium or playwright-core is missing."""
+    def __init__(self, routes, plain=()):
+        """Start the driver serving (prefix, folder) routes."""
+        args = []
+        for prefix, folder in routes:
+            args += ['--route', f'{prefix}={folder}']
+        for prefix, folder in plain:
+            args += ['--plain', f'{prefix}={folder}']
         self.process = subprocess.Popen(
-            ['node', str(HERE / 'browser_driver.mjs'), str(core.share),
-             str(core.bin)],
+            ['node', str(HERE / 'browser_driver.mjs')] + args,
             stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True,
             env=_env())
         hello = self.process.stdout.readline()
@@ -156,10 +173,11 @@ class Browser:
         self.info = json.loads(hello)
         self._next = 0
 
-    def call(self, cmd, **args):
-        """Send one command and return its result."""
+    def evaluate(self, url, expr=None):
+        """Open `url` in a fresh page, evaluate `expr`; return the reply."""
         self._next += 1
-        message = dict(args, id=self._next, cmd=cmd)
+        message = {'id': self._next, 'cmd': 'evaluate', 'url': url,
+                   'expr': expr}
         self.process.stdin.write(json.dumps(message) + '\n')
         self.process.stdin.flush()
         line = self.process.stdout.readline()
@@ -169,13 +187,15 @@ class Browser:
         return reply['result']
 
     def run(self, scenario):
-        """Run one scenario in a fresh page; return its result dict."""
-        return self.call('scenario', name=scenario)
+        """Run one core scenario in a fresh page; return its result dict."""
+        reply = self.evaluate('/core/page.html',
+                              f'window.runScenario({json.dumps(scenario)})')
+        assert reply['status'] == 'ready', reply
+        return dict(reply['value'], console=reply['console'])
 
     def close(self):
         """Stop the driver (and Chromium)."""
         try:
-            self.process.stdin.write(json.dumps({'cmd': 'quit'}) + '\n')
             self.process.stdin.close()
             self.process.wait(timeout=30)
         except (OSError, subprocess.TimeoutExpired):
@@ -184,7 +204,7 @@ class Browser:
 
 
 def browser_skip_reason():
-    """Why browser tests cannot run here, or None."""
+    """Tell why browser tests cannot run here, or return None."""
     if not Path(CHROMIUM).is_file() and not shutil.which(CHROMIUM):
         return f'no Chromium at {CHROMIUM} (set COLCON_WASM_CHROMIUM)'
     if not PLAYWRIGHT.is_dir():
@@ -193,13 +213,13 @@ def browser_skip_reason():
 
 
 def results(run, name):
-    """The RESULT key=values of process `name` of a scenario run."""
+    """Get the RESULT key=values of process `name` of a scenario run."""
     assert run['ok'], f'scenario failed: {run["error"]}\n{_dump(run)}'
     return run['processes'][name]['results']
 
 
 def exit_of(run, name):
-    """The exit record of process `name`."""
+    """Get the exit record of process `name`."""
     return run['processes'][name]['exit']
 
 
@@ -213,5 +233,5 @@ def _dump(run):
 
 
 def explain(run):
-    """A readable dump of a run, for assertion messages."""
+    """Dump a run readably, for assertion messages."""
     return _dump(run)

@@ -269,11 +269,12 @@ const SCENARIOS = {
   /** Graph queries from C++ and from the runtime; duplicate node names warn. */
   async graph(ctx) {
     await start(ctx, 'peer', 'graph', { name: 'peer', 'wait-signal': '/test/graph_done' });
-    await start(ctx, 'grapher', 'graph', { peer: 'peer', signal: '/test/graph_done', ns: '/' });
+    await result(ctx, 'peer', 'nodes');
+    await start(ctx, 'grapher', 'graph', { 'want-pubs': 2, signal: '/test/graph_done', ns: '/' });
     await exits(ctx, ['grapher', 'peer']);
     await start(ctx, 'dup1', 'graph', { name: 'twin', 'wait-signal': '/test/twin_done' });
     await result(ctx, 'dup1', 'nodes');
-    await start(ctx, 'dup2', 'graph', { name: 'twin', signal: '/test/twin_done' });
+    await start(ctx, 'dup2', 'graph', { name: 'twin', signal: '/test/twin_done', 'want-pubs': 2 });
     await exits(ctx, ['dup1', 'dup2']);
   },
 
@@ -303,6 +304,12 @@ const SCENARIOS = {
   async deadline(ctx) {
     await start(ctx, 'deadline', 'deadline', {});
     await exits(ctx, ['deadline']);
+  },
+
+  /** ignore_local_publications, service/client/event callbacks, the C++ QoS check. */
+  async misc(ctx) {
+    await start(ctx, 'misc', 'misc', {});
+    await exits(ctx, ['misc']);
   },
 
   /** Separate ROS_DOMAIN_IDs never see each other. */

@@ -145,21 +145,23 @@ const Allocator & malloc_allocator()
 
 Status take(
   int ep, int mode, const Allocator & allocator, uint8_t ** data, size_t * size,
-  wasm_bus_take_info * info, bool * taken, const char * what)
+  wasm_bus_take_info * info, bool * taken, const char * what, const std::string & name)
 {
   if (data == nullptr || size == nullptr || taken == nullptr || info == nullptr) {
-    return Status(Code::kInvalidArgument, std::string(what) + ": null output argument");
+    return Status(Code::kInvalidArgument, std::string(what) + " '" + name + "': null output argument");
   }
   if (allocator.allocate == nullptr || allocator.deallocate == nullptr) {
-    return Status(Code::kInvalidArgument, std::string(what) + ": allocator without functions");
+    return Status(
+      Code::kInvalidArgument, std::string(what) + " '" + name + "': allocator without functions");
   }
   *taken = false;
   if (ep < 0) {
-    return Status(Code::kInvalidArgument, std::string(what) + ": the entity was shut down");
+    return Status(
+      Code::kInvalidArgument, std::string(what) + " '" + name + "': the entity was shut down");
   }
   int r = wasm_bus_take(ep, mode, allocator.allocate, allocator.deallocate, allocator.state, info);
   if (r < 0) {
-    return bus_status(-r, what);
+    return bus_status(-r, (std::string(what) + " '" + name + "'").c_str());
   }
   if (r == 0) {
     return Status::Ok();

@@ -133,11 +133,12 @@ int64_t ms_to_ns(double ms);
 
 /// Take one message of endpoint `ep` with `allocator`; fills `info`.
 /**
+ * `what` and `name` ("take on", "/chatter") only build the message of a failure.
  * \return kOk with *taken set; or the failure
  */
 Status take(
   int ep, int mode, const Allocator & allocator, uint8_t ** data, size_t * size,
-  wasm_bus_take_info * info, bool * taken, const char * what);
+  wasm_bus_take_info * info, bool * taken, const char * what, const std::string & name);
 
 /// The Allocator that uses std::malloc / std::free.
 const Allocator & malloc_allocator();

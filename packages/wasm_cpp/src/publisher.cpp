@@ -79,6 +79,9 @@ Status Publisher::publish(const void * data, size_t size, Timeout timeout)
   }
   int rc = wasm_bus_publish(
     handle_, data, static_cast<int>(size), detail::timeout_ms(timeout), nullptr);
+  if (rc == 0) {
+    return Status::Ok();
+  }
   return detail::bus_status(rc, ("publish on '" + topic_name_ + "'").c_str());
 }
 

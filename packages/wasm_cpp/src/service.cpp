@@ -110,8 +110,8 @@ Status Service::take_request(
 {
   wasm_bus_take_info ti;
   Status s = detail::take(
-    handle_, detail::kTakeRequest, allocator, data, size, &ti, taken,
-    ("take_request on '" + service_name_ + "'").c_str());
+    handle_, detail::kTakeRequest, allocator, data, size, &ti, taken, "take_request on",
+    service_name_);
   if (s.ok() && *taken) {
     fill_service_info(ti, info);
   }
@@ -120,13 +120,14 @@ Status Service::take_request(
 
 Status Service::send_response(const RequestId & request_id, const void * data, size_t size)
 {
-  const std::string what = "send_response on '" + service_name_ + "'";
-  if (handle_ < 0) {
-    return Status(Code::kError, what + " failed: the service was shut down");
-  }
-  Status s = check_payload(data, size, what);
-  if (!s.ok()) {
-    return s;
+  if (handle_ < 0 || (data == nullptr && size != 0) ||
+    size > static_cast<size_t>(std::numeric_limits<int32_t>::max()))
+  {
+    const std::string what = "send_response on '" + service_name_ + "'";
+    if (handle_ < 0) {
+      return Status(Code::kError, what + " failed: the service was shut down");
+    }
+    return check_payload(data, size, what);
   }
   int32_t gid[4];
   detail::gid_to_words(request_id.writer_guid, gid);
@@ -135,7 +136,10 @@ Status Service::send_response(const RequestId & request_id, const void * data, s
     handle_, gid, static_cast<uint32_t>(seq & 0xffffffffu), static_cast<uint32_t>(seq >> 32),
     data, static_cast<int>(size),
     detail::timeout_ms(node_->context()->options().publish_timeout));
-  return detail::bus_status(rc, what.c_str());
+  if (rc == 0) {
+    return Status::Ok();
+  }
+  return detail::bus_status(rc, ("send_response on '" + service_name_ + "'").c_str());
 }
 
 bool Service::has_request() const
@@ -199,23 +203,24 @@ Client::~Client()
 
 Status Client::send_request(const void * data, size_t size, int64_t * sequence_number)
 {
-  const std::string what = "send_request on '" + service_name_ + "'";
-  if (handle_ < 0) {
-    return Status(Code::kError, what + " failed: the client was shut down");
-  }
-  if (sequence_number == nullptr) {
-    return Status(Code::kInvalidArgument, what + " failed: null sequence_number");
-  }
-  Status s = check_payload(data, size, what);
-  if (!s.ok()) {
-    return s;
+  if (handle_ < 0 || sequence_number == nullptr || (data == nullptr && size != 0) ||
+    size > static_cast<size_t>(std::numeric_limits<int32_t>::max()))
+  {
+    const std::string what = "send_request on '" + service_name_ + "'";
+    if (handle_ < 0) {
+      return Status(Code::kError, what + " failed: the client was shut down");
+    }
+    if (sequence_number == nullptr) {
+      return Status(Code::kInvalidArgument, what + " failed: null sequence_number");
+    }
+    return check_payload(data, size, what);
   }
   uint32_t seq[2] = {0, 0};
   int rc = wasm_bus_publish(
     handle_, data, static_cast<int>(size),
     detail::timeout_ms(node_->context()->options().publish_timeout), seq);
   if (rc != 0) {
-    return detail::bus_status(rc, what.c_str());
+    return detail::bus_status(rc, ("send_request on '" + service_name_ + "'").c_str());
   }
   *sequence_number = static_cast<int64_t>((static_cast<uint64_t>(seq[1]) << 32) | seq[0]);
   return Status::Ok();
@@ -242,8 +247,8 @@ Status Client::take_response(
 {
   wasm_bus_take_info ti;
   Status s = detail::take(
-    handle_, detail::kTakeResponse, allocator, data, size, &ti, taken,
-    ("take_response on '" + service_name_ + "'").c_str());
+    handle_, detail::kTakeResponse, allocator, data, size, &ti, taken, "take_response on",
+    service_name_);
   if (s.ok() && *taken) {
     fill_service_info(ti, info);
   }

@@ -76,8 +76,7 @@ Status Subscription::take(
 {
   wasm_bus_take_info ti;
   Status s = detail::take(
-    handle_, detail::kTakeMessage, allocator, data, size, &ti, taken,
-    ("take on '" + topic_name_ + "'").c_str());
+    handle_, detail::kTakeMessage, allocator, data, size, &ti, taken, "take on", topic_name_);
   if (!s.ok() || !*taken || info == nullptr) {
     return s;
   }

@@ -57,9 +57,8 @@ const encoder = new TextEncoder();
 const decoder = new TextDecoder();
 
 /** Wall-clock milliseconds since the epoch with sub-millisecond resolution. */
-export const now = (typeof performance !== 'undefined' && performance.timeOrigin)
-  ? () => performance.timeOrigin + performance.now()
-  : () => Date.now();
+const ORIGIN = (typeof performance !== 'undefined' && performance.timeOrigin) || 0;
+export const now = ORIGIN ? () => ORIGIN + performance.now() : () => Date.now();
 
 function fnv1a(bytes) {
   let h = 0x811c9dc5;
@@ -169,10 +168,7 @@ export class Bus {
   /** @param {SharedArrayBuffer} sab */
   constructor(sab) {
     this.sab = sab;
-    // Length-tracking views follow the growable buffer.
-    this.i32 = new Int32Array(sab);
-    this.u8 = new Uint8Array(sab);
-    this.f64 = new Float64Array(sab);
+    this._views(sab.byteLength);
     const h = this.i32;
     this.id = h[H.BUS_ID];
     this.procOff = h[H.PROC_OFF];
@@ -188,13 +184,24 @@ export class Bus {
     this.growable = !!sab.growable;
   }
 
-  /** Make sure the views cover the whole (possibly grown) buffer. */
+  // Fixed-length views: V8 accesses length-tracking views of a growable
+  // SharedArrayBuffer about 5x slower, so each thread keeps views of the size
+  // it last saw and renews them when it meets an offset beyond them.
+  _views(len) {
+    this.i32 = new Int32Array(this.sab, 0, len >> 2);
+    this.u8 = new Uint8Array(this.sab, 0, len);
+    this.f64 = new Float64Array(this.sab, 0, len >> 3);
+  }
+
+  /**
+   * Make sure the views cover the whole (possibly grown) buffer.
+   * @returns {boolean} true when they were renewed
+   */
   refreshViews() {
-    if (this.u8.length !== this.sab.byteLength) {
-      this.i32 = new Int32Array(this.sab);
-      this.u8 = new Uint8Array(this.sab);
-      this.f64 = new Float64Array(this.sab);
-    }
+    const len = this.sab.byteLength;
+    if (this.u8.length === len) return false;
+    this._views(len);
+    return true;
   }
 
   /** Word index of process record `pid`. */
@@ -297,14 +304,22 @@ export class Bus {
   // ---------------------------------------------------------------- doorbells
 
   /**
-   * Ring the doorbell of process `pid` (wakes its waits only if it has sleepers).
+   * Ring the doorbell of process `pid`, after committing what its waits check.
+   *
+   * Touches the doorbell only when a thread of `pid` counts itself as a
+   * sleeper. Waiters register as sleepers before they read the doorbell and
+   * check (BusClient.wait), so with seq-cst operations either this load sees
+   * the registration, or the registration (and the check after it) comes
+   * after our commit and sees it: no wake-up is lost.
    * @param {number} pid
    */
   ring(pid) {
     const i32 = this.i32;
     const base = this.proc(pid);
-    Atomics.add(i32, base + P.BELL, 1);
-    if (Atomics.load(i32, base + P.SLEEPERS) > 0) Atomics.notify(i32, base + P.BELL);
+    if (Atomics.load(i32, base + P.SLEEPERS) > 0) {
+      Atomics.add(i32, base + P.BELL, 1);
+      Atomics.notify(i32, base + P.BELL);
+    }
   }
 
   /** Ring every live process. */

@@ -16,12 +16,15 @@
  * several threads can take from one reader and the writer never waits for
  * KEEP_LAST readers.
  *
- * No lost wake-ups: a waiter reads its doorbell, checks its entities, counts
- * itself as a sleeper and sleeps only while the doorbell still holds the
- * value it read; a writer commits, then increments the doorbell, then reads
- * the sleeper count (all seq-cst). Either the waiter's check sees the
- * message, or the increment precedes its Atomics.wait (which then returns at
- * once), or the writer sees the sleeper and notifies.
+ * No lost wake-ups: a waiter counts itself as a sleeper, reads its doorbell,
+ * checks its entities and sleeps only while the doorbell still holds the
+ * value it read; a writer commits, then reads the sleeper count and, if
+ * there is one, increments the doorbell and notifies (all seq-cst). Either
+ * the writer sees the sleeper (then the increment precedes the waiter's
+ * Atomics.wait, which returns at once, or follows it and wakes it), or the
+ * registration follows the writer's load, hence its commit, and the waiter's
+ * check sees the message. Writers pay one load per reader process when
+ * nobody sleeps.
  *
  * @module bus_client
  */
@@ -147,11 +150,14 @@ export class BusClient {
   // ------------------------------------------------------------ graph cache
 
   _refresh() {
-    const v = Atomics.load(this.bus.i32, H.GRAPH_VERSION);
+    // A plain read: a stale version only delays the cache refresh.
+    const v = this.bus.i32[H.GRAPH_VERSION];
     if (v !== this._cacheVersion) {
       this._cacheVersion = v;
       this._writers.clear();
       this._readers.clear();
+      // New endpoints (rings) may lie beyond this thread's views.
+      this.bus.refreshViews();
     }
   }
 
@@ -309,8 +315,8 @@ export class BusClient {
       throw new BusError(Code.INVALID_ARGUMENT, `${op}: invalid endpoint handle ${index}`);
     }
     const b = bus.ep(index);
-    if (Atomics.load(bus.i32, b + E.STATE) !== REC_ALIVE || bus.i32[b + E.PID] !== this.pid ||
-        (kind && bus.i32[b + E.KIND] !== kind)) {
+    const i32 = bus.i32;
+    if (i32[b + E.STATE] !== REC_ALIVE || i32[b + E.PID] !== this.pid || (kind && i32[b + E.KIND] !== kind)) {
       throw new BusError(Code.INVALID_ARGUMENT,
         `${op}: endpoint handle ${index} does not name a live ${kind ? KIND_NAMES[kind] : 'endpoint'} of this process`);
     }
@@ -391,9 +397,13 @@ export class BusClient {
     this._wlock(b);
     let seq;
     try {
-      const n = Atomics.load(i32, b + E.HEAD);
+      const n = i32[b + E.HEAD]; // only writers (under WLOCK) store it
       const sw = ring + (n & (slots - 1)) * S.WORDS;
-      if (w.blocking.length) this._awaitSlot(ep, b, w, n, slots, sw, timeoutMs, op);
+      // Before overwriting message n - slots, every blocking reader must have taken it.
+      if (w.blocking.length && i32[sw + S.COMMIT] === ((n - slots + 1) | 0) &&
+          this._blockingReader(w, (n - slots) | 0, sw) >= 0) {
+        this._awaitSlot(ep, b, w, n, slots, sw, timeoutMs, op);
+      }
       i32 = bus.i32;
       Atomics.store(i32, sw + S.COMMIT, ~(n + 1));
       let block = i32[sw + S.BLOCK];
@@ -414,6 +424,7 @@ export class BusClient {
             `${op} on '${this.endpointName(ep)}' failed: bus memory exhausted (${len} bytes needed, ${u.arenaUsed} in use, at most ${u.maxBytes}); start the Runtime with a larger maxBytes or use smaller histories`);
         }
       }
+      if (block + len > bus.u8.length) bus.refreshViews();
       if (len) bus.u8.set(src, block);
       const t = now();
       const hi = i32[b + E.HEAD_HI] + (((n + 1) | 0) === 0 ? 1 : 0);
@@ -444,6 +455,7 @@ export class BusClient {
     const deadline = timeoutMs < 0 ? Infinity : now() + timeoutMs;
     const old = (n - slots) | 0;
     let waiting = false;
+    Atomics.add(bus.i32, this.sleepersIndex, 1);
     try {
       for (;;) {
         const i32 = bus.i32;
@@ -466,14 +478,13 @@ export class BusClient {
           throw new BusError(Code.TIMEOUT,
             `${op} on '${this.endpointName(ep)}' timed out after ${timeoutMs} ms: the ${KIND_NAMES[i32[rb + E.KIND]]} of node '${rname}' has not taken its oldest pending message and the writer's history of ${slots} messages is full (RELIABLE KEEP_ALL never drops); the message was not sent`);
         }
-        Atomics.add(i32, this.sleepersIndex, 1);
         Atomics.wait(i32, this.bellIndex, bell, deadline === Infinity ? Infinity : deadline - t);
-        Atomics.sub(i32, this.sleepersIndex, 1);
         this._refresh();
         w = this._writerInfo(ep);
       }
     } finally {
       if (waiting) Atomics.sub(bus.i32, b + E.ACK_WAITERS, 1);
+      Atomics.sub(bus.i32, this.sleepersIndex, 1);
     }
   }
 
@@ -484,14 +495,15 @@ export class BusClient {
     const blocking = w.blocking;
     for (let i = 0; i < blocking.length; i++) {
       const lb = bus.link(blocking[i]);
+      const c = Atomics.load(i32, lb + L.CURSOR);
+      if (((old - c) | 0) < 0) continue; // taken
       if (Atomics.load(i32, lb + L.STATE) !== REC_ALIVE) continue;
       const reader = i32[lb + L.READER];
       const rb = bus.ep(reader);
-      if (!bus.processAlive(i32[rb + E.PID])) continue;
       if ((i32[lb + L.FLAGS] & LINK_TARGETED) &&
           (i32[sw + S.TARGET] !== reader + 1 || i32[sw + S.TARGET_SERIAL] !== i32[rb + E.SERIAL])) continue;
-      const c = Atomics.load(i32, lb + L.CURSOR);
-      if (((old - c) | 0) >= 0) return blocking[i];
+      if (!bus.processAlive(i32[rb + E.PID])) continue;
+      return blocking[i];
     }
     return -1;
   }
@@ -505,6 +517,7 @@ export class BusClient {
     const b = this._checkEndpoint(ep, 0, 'wait_for_all_acked');
     const deadline = timeoutMs < 0 ? Infinity : now() + timeoutMs;
     Atomics.add(bus.i32, b + E.ACK_WAITERS, 1);
+    Atomics.add(bus.i32, this.sleepersIndex, 1);
     try {
       for (;;) {
         const i32 = bus.i32;
@@ -531,12 +544,11 @@ export class BusClient {
         if (!pending) return true;
         const t = now();
         if (t >= deadline) return false;
-        Atomics.add(i32, this.sleepersIndex, 1);
         Atomics.wait(i32, this.bellIndex, bell, deadline === Infinity ? Infinity : deadline - t);
-        Atomics.sub(i32, this.sleepersIndex, 1);
       }
     } finally {
       Atomics.sub(bus.i32, b + E.ACK_WAITERS, 1);
+      Atomics.sub(bus.i32, this.sleepersIndex, 1);
     }
   }
 
@@ -593,10 +605,10 @@ export class BusClient {
     for (let i = 0; i < links.length; i++) {
       const l = links[i];
       const lb = bus.link(l);
-      if (Atomics.load(i32, lb + L.STATE) !== REC_ALIVE) continue;
+      if (i32[lb + L.STATE] !== REC_ALIVE) continue;
       const writer = i32[lb + L.WRITER];
       const wb = bus.ep(writer);
-      const wstate = Atomics.load(i32, wb + E.STATE);
+      const wstate = i32[wb + E.STATE];
       if (wstate !== REC_ALIVE) {
         if (wstate !== REC_ZOMBIE) continue;
         if (((Atomics.load(i32, wb + E.HEAD) - Atomics.load(i32, lb + L.CURSOR)) | 0) <= 0) {
@@ -720,7 +732,9 @@ export class BusClient {
     info.reqHi = i32[sw + S.REQ_HI];
     const len = st.len;
     if (len) {
-      if (st.block + len > bus.u8.length) return false;
+      if (st.block + len > bus.u8.length && (!bus.refreshViews() || st.block + len > bus.u8.length)) {
+        return false;
+      }
       dst.set(bus.u8.subarray(st.block, st.block + len), dstOff);
     }
     if (Atomics.load(i32, sw + S.COMMIT) !== st.commit) return false;
@@ -964,16 +978,23 @@ export class BusClient {
     return Atomics.load(this.bus.i32, this.bellIndex);
   }
 
+  /** Count this thread as a sleeper of the process (before bell() and checking). */
+  register() {
+    Atomics.add(this.bus.i32, this.sleepersIndex, 1);
+  }
+
+  /** Stop counting this thread as a sleeper. */
+  unregister() {
+    Atomics.sub(this.bus.i32, this.sleepersIndex, 1);
+  }
+
   /**
-   * Sleep on this process' doorbell while it still holds `bell`.
-   * @param {number} bell value read before checking the entities
+   * Sleep on this process' doorbell while it still holds `bell` (registered callers only).
+   * @param {number} bell value read after register() and before checking the entities
    * @param {number} ms at most this long (Infinity: no limit)
    */
   sleep(bell, ms) {
-    const i32 = this.bus.i32;
-    Atomics.add(i32, this.sleepersIndex, 1);
-    Atomics.wait(i32, this.bellIndex, bell, ms);
-    Atomics.sub(i32, this.sleepersIndex, 1);
+    Atomics.wait(this.bus.i32, this.bellIndex, bell, ms);
   }
 
   /** Wake every wait of this process (guard condition triggers, listener changes). */
@@ -1042,16 +1063,25 @@ export class BusClient {
    * @returns {number} ready count (0: timed out, -1: woken, call again)
    */
   wait(items, base, count, timeoutMs, heap32, returnAfterWake = false) {
-    const deadline = timeoutMs < 0 ? Infinity : now() + timeoutMs;
+    const deadline = timeoutMs <= 0 ? (timeoutMs === 0 ? 0 : Infinity) : now() + timeoutMs;
     for (;;) {
-      const bell = this.bell();
       if (this.service) this.service();
-      const ready = this.checkItems(items, base, count, heap32);
+      let ready = this.checkItems(items, base, count, heap32);
       if (ready > 0 || timeoutMs === 0) return ready;
       const t = now();
       if (t >= deadline) return 0;
-      const until = Math.min(deadline, this._nextExpiry);
-      this.sleep(bell, until === Infinity ? Infinity : Math.max(0, until - t));
+      // Register, then look again before sleeping (see the module comment):
+      // writers only ring while we are registered, so keep that window short.
+      this.register();
+      const bell = this.bell();
+      if (this.service) this.service();
+      ready = this.checkItems(items, base, count, heap32);
+      if (ready === 0) {
+        const until = Math.min(deadline, this._nextExpiry);
+        this.sleep(bell, until === Infinity ? Infinity : Math.max(0, until - t));
+      }
+      this.unregister();
+      if (ready > 0) return ready;
       if (returnAfterWake) return -1;
     }
   }
@@ -1130,16 +1160,21 @@ export class BusClient {
    */
   listen(items, base, count, timeoutMs, returnAfterWake = false) {
     const deadline = timeoutMs < 0 ? Infinity : now() + timeoutMs;
-    for (;;) {
-      const bell = this.bell();
-      if (this.service) this.service();
-      const n = this.listenCheck(items, base, count);
-      if (n > 0) return n;
-      const t = now();
-      if (t >= deadline) return 0;
-      const until = Math.min(deadline, this._nextExpiry);
-      this.sleep(bell, until === Infinity ? Infinity : Math.max(0, until - t));
-      if (returnAfterWake) return -1;
+    this.register();
+    try {
+      for (;;) {
+        const bell = this.bell();
+        if (this.service) this.service();
+        const n = this.listenCheck(items, base, count);
+        if (n > 0) return n;
+        const t = now();
+        if (t >= deadline) return 0;
+        const until = Math.min(deadline, this._nextExpiry);
+        this.sleep(bell, until === Infinity ? Infinity : Math.max(0, until - t));
+        if (returnAfterWake) return -1;
+      }
+    } finally {
+      this.unregister();
     }
   }
 

@@ -63,6 +63,12 @@ export async function startProcess(msg, platform) {
         exit(code, code !== 0, code !== 0 ? `exited with code ${code}` : '');
         platform.close(code);
       },
+      // Emscripten's own quit calls process.exit() under Node.js, which can drop
+      // the last messages (log lines) posted to the runtime: let close() end
+      // the worker once they are out.
+      quit: (status, toThrow) => {
+        throw toThrow;
+      },
       onAbort: (what) => {
         exit(1, true, `aborted: ${what}`);
       },

@@ -1,8 +1,8 @@
 // Copyright 2026 The colcon-wasm authors. Licensed under the Apache License 2.0.
 
 /**
- * Node.js host worker (worker_threads). The Runtime posts one START message;
- * see host_common.mjs. The glue runs in global scope, as in a browser worker,
+ * Node.js host worker (worker_threads). The Runtime may first post PRELOAD
+ * (answered by READY: a warm host), then posts one START; see host_common.mjs. The glue runs in global scope, as in a browser worker,
  * with the CommonJS globals it expects (require, __filename, __dirname).
  *
  * @module node_host
@@ -16,8 +16,14 @@ import { parentPort } from 'node:worker_threads';
 
 import { startProcess } from './host_common.mjs';
 
-parentPort.once('message', (msg) => {
+const onMessage = (msg) => {
+  if (msg && msg.type === 'preload') {
+    // The host module is a static import: already loaded.
+    parentPort.postMessage({ type: 'ready' });
+    return;
+  }
   if (!msg || msg.type !== 'start') return;
+  parentPort.off('message', onMessage);
   const glue = fileURLToPath(msg.url);
   startProcess(msg, {
     loadGlue() {
@@ -34,4 +40,5 @@ parentPort.once('message', (msg) => {
     },
     compile: async (url) => WebAssembly.compile(await fs.promises.readFile(fileURLToPath(url))),
   });
-});
+};
+parentPort.on('message', onMessage);

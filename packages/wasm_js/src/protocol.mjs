@@ -9,12 +9,16 @@
 
 /** Runtime -> host worker. */
 export const ToHost = Object.freeze({
+  /** {type, hostModuleUrl}: import the host module now (a warm, idle host); answered by READY */
+  PRELOAD: 'preload',
   /** {type, bus, pid, url, wasmUrl, args, env, name, wasmModule, busModuleUrl, hostModuleUrl} */
   START: 'start',
 });
 
 /** Host worker -> Runtime. */
 export const FromHost = Object.freeze({
+  /** {type} the host module is imported; the host waits for START */
+  READY: 'ready',
   /** {type, stream: 'stdout'|'stderr', text} one line */
   LOG: 'log',
   /** {type} the glue is loaded and main() is about to run */

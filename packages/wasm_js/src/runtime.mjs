@@ -30,6 +30,17 @@ const ISOLATION_HELP =
   '(`colcon-wasm serve` does), and load it over http://localhost or https.';
 
 const SEVERITY_RE = /^\[(DEBUG|INFO|WARN|ERROR|FATAL)\]/;
+// rcutils colours its console output when isatty() says yes, which it does
+// under Emscripten: "\x1b[33m[WARN] ...\x1b[0m".
+const ANSI_SGR_RE = /\x1b\[[0-9;]*m/g;
+
+/**
+ * Remove ANSI colour codes (SGR sequences) from a log line.
+ * @param {string} text
+ */
+export function stripAnsi(text) {
+  return text.indexOf('\x1b') < 0 ? text : text.replace(ANSI_SGR_RE, '');
+}
 
 /**
  * Parse the severity of a log line: the ROS tag when there is one
@@ -75,7 +86,8 @@ export class NodeProcess {
       const onLog = this._options.onLog;
       if (onLog) {
         try {
-          onLog({ stream: m.stream, severity: severityOf(m.stream, m.text), text: m.text, name: this.name, pid: this.id });
+          const text = stripAnsi(m.text);
+          onLog({ stream: m.stream, severity: severityOf(m.stream, text), text, name: this.name, pid: this.id });
         } catch (e) {
           console.error(`onLog of '${this.name}' threw:`, e);
         }
@@ -128,6 +140,8 @@ export class Runtime {
    * @param {number} [options.initialBytes=16 MiB]
    * @param {number} [options.maxProcesses] @param {number} [options.maxNodes]
    * @param {number} [options.maxEndpoints] @param {number} [options.maxLinks]
+   * @param {number} [options.warmHosts=1] idle host workers kept ready (runtime modules
+   *   loaded), so that spawn() does not wait for a worker to boot
    * @returns {Promise<Runtime>}
    * @throws {IsolationError} when the page is not cross-origin isolated
    */
@@ -143,10 +157,10 @@ export class Runtime {
     if (!bus.tryLock(1)) throw new BusError(Code.ERROR, 'a new bus is already locked');
     const pid = bus.allocProcess(PROC_KIND_RUNTIME);
     bus.unlock(1);
-    return new Runtime(bus, pid);
+    return new Runtime(bus, pid, options);
   }
 
-  constructor(bus, pid) {
+  constructor(bus, pid, options = {}) {
     /** The bus (its SharedArrayBuffer is `bus.sab`). */
     this.bus = bus;
     /** This runtime's own process id (owner of its registry mutations). */
@@ -158,6 +172,53 @@ export class Runtime {
     this._watching = false;
     this._closed = false;
     this._tools = null;
+    /** Warm hosts: started workers with the runtime modules loaded, waiting for a spawn. */
+    this._warm = options.warmHosts === undefined ? 1 : options.warmHosts;
+    this._spares = [];
+    this._fillSpares();
+  }
+
+  /** Start an idle host worker that has imported the host module. */
+  async _newHost() {
+    const worker = await HostWorker.start(
+      isNode ? siblingUrl('node_host.mjs') : siblingUrl('web_host.js'), { name: 'wasm_js host', type: 'classic' });
+    await new Promise((resolve, reject) => {
+      worker.on('message', (m) => {
+        if (m && m.type === FromHost.READY) resolve();
+        else if (m && m.type === FromHost.EXIT) reject(new Error(m.reason));
+      });
+      worker.on('error', (e) => reject(new Error(e.message)));
+      worker.postMessage({ type: ToHost.PRELOAD, hostModuleUrl: siblingUrl('host_common.mjs') });
+    });
+    return worker;
+  }
+
+  _fillSpares() {
+    while (!this._closed && this._spares.length < this._warm) {
+      const p = this._newHost();
+      p.catch(() => {});
+      this._spares.push(p);
+    }
+  }
+
+  /** Resolves when the warm host workers are ready (e.g. before timing a spawn). */
+  async warm() {
+    await Promise.all(this._spares.map((p) => p.catch(() => {})));
+  }
+
+  /** A host worker for a spawn: a warm one when ready, else a new one. */
+  async _host() {
+    const spare = this._spares.shift();
+    this._fillSpares();
+    if (spare) {
+      try {
+        return await spare;
+      } catch (e) {
+        // A broken spare: start one now.
+      }
+    }
+    return HostWorker.start(
+      isNode ? siblingUrl('node_host.mjs') : siblingUrl('web_host.js'), { name: 'wasm_js host', type: 'classic' });
   }
 
   async _allocPid(kind) {
@@ -224,8 +285,7 @@ export class Runtime {
     const pid = await this._allocPid(PROC_KIND_NODE);
     let worker;
     try {
-      worker = await HostWorker.start(
-        isNode ? siblingUrl('node_host.mjs') : siblingUrl('web_host.js'), { name, type: 'classic' });
+      worker = await this._host();
     } catch (e) {
       await this._reap(pid, null);
       throw new BusError(Code.ERROR, `spawn '${name}': cannot start a worker: ${e.message}`);
@@ -357,6 +417,10 @@ export class Runtime {
   /** Stop every process and the tools worker. */
   async close() {
     if (this._closed) return;
+    const spares = this._spares;
+    this._spares = [];
+    this._warm = 0;
+    await Promise.all(spares.map((p) => p.then((w) => w.terminate(), () => {})));
     await Promise.all([...this.processes.values()].map((p) => p.stop()));
     if (this._tools) {
       const tools = await this._tools;

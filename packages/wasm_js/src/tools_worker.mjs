@@ -65,17 +65,21 @@ function drain() {
   }
 }
 
-/** Sleep on the doorbell without blocking: counted as a sleeper so writers notify. */
+/**
+ * Sleep on the doorbell without blocking: registered as a sleeper (so that
+ * writers ring), then read the doorbell, drain, and waitAsync while the
+ * doorbell keeps the value read (the protocol of BusClient.wait).
+ */
 function arm() {
   if (armed) return;
   armed = true;
+  client.register();
   const i32 = client.bus.i32;
   const bell = client.bell();
   drain();
-  Atomics.add(i32, client.sleepersIndex, 1);
   const r = Atomics.waitAsync(i32, client.bellIndex, bell);
   const wake = () => {
-    Atomics.sub(i32, client.sleepersIndex, 1);
+    client.unregister();
     armed = false;
     arm();
   };

@@ -1,14 +1,36 @@
 // Copyright 2026 The colcon-wasm authors. Licensed under the Apache License 2.0.
 //
 // Browser host worker (a classic Web Worker, so that it can importScripts()
-// an Emscripten glue). The Runtime posts one START message; see host_common.mjs.
+// an Emscripten glue). The Runtime may first post PRELOAD (import the host
+// module, answer READY: a warm host), then posts one START; see host_common.mjs.
 'use strict';
+
+var hostModule = null;
+
+function load(url) {
+  if (!hostModule) hostModule = import(url);
+  return hostModule;
+}
+
+function fail(reason) {
+  self.postMessage({type: 'exit', code: 1, crashed: true, reason: reason});
+  self.close();
+}
 
 self.onmessage = function(e) {
   var msg = e.data;
-  if (!msg || msg.type !== 'start') return;
+  if (!msg) return;
+  if (msg.type === 'preload') {
+    load(msg.hostModuleUrl).then(function() {
+      self.postMessage({type: 'ready'});
+    }, function(err) {
+      fail('cannot load the wasm_js host (' + msg.hostModuleUrl + '): ' + err);
+    });
+    return;
+  }
+  if (msg.type !== 'start') return;
   self.onmessage = null;
-  import(msg.hostModuleUrl).then(function(host) {
+  load(msg.hostModuleUrl).then(function(host) {
     return host.startProcess(msg, {
       loadGlue: function(url) { importScripts(url); },
       locate: function(path) { return new URL(path, msg.url).href; },
@@ -21,8 +43,6 @@ self.onmessage = function(e) {
       },
     });
   }).catch(function(err) {
-    self.postMessage({type: 'exit', code: 1, crashed: true,
-                      reason: 'cannot load the wasm_js host (' + msg.hostModuleUrl + '): ' + err});
-    self.close();
+    fail('cannot load the wasm_js host (' + msg.hostModuleUrl + '): ' + err);
   });
 };

@@ -199,7 +199,12 @@ Env make_env(const std::string & default_name)
   e.ws = must(WaitSet::make(e.ctx), "wait set");
   e.graph = must(GuardCondition::make_graph(e.ctx), "graph guard");
   if (e.node->name_was_taken()) {
-    out("WARN node name '%s' is already in use", e.node->fully_qualified_name().c_str());
+    // The ROS console format, so the runtime reports severity WARN.
+    const double now_s = std::chrono::duration<double>(
+      std::chrono::system_clock::now().time_since_epoch()).count();
+    out(
+      "[WARN] [%.9f] [%s]: node name '%s' is already in use", now_s, e.node->name().c_str(),
+      e.node->fully_qualified_name().c_str());
   }
   return e;
 }
@@ -747,19 +752,14 @@ int role_graph()
   auto srv = must(
     Service::make(e.node, "/graph/srv", "test_msgs/srv/Echo", wasm_cpp::services_default_qos()),
     "srv");
-  const std::string peer = opt("peer", "");
-  if (!peer.empty()) {
-    wait_graph(e, [&]() {
-        std::vector<wasm_cpp::NodeInfo> nodes;
-        wasm_cpp::graph::get_nodes(*e.ctx, &nodes);
-        for (auto & n : nodes) {
-          if (n.name == peer) {
-            return true;
-          }
-        }
-        return false;
-      }, 20000);
-  }
+  // Wait until the peers' publishers are in the graph (a node appears before its endpoints).
+  const size_t want = static_cast<size_t>(opt_int("want-pubs", 1));
+  wait_graph(e, [&]() {
+      size_t n = 0;
+      wasm_cpp::graph::count_endpoints(
+        *e.ctx, "/graph/topic", wasm_cpp::EndpointKind::kPublisher, &n);
+      return n >= want;
+    }, 20000);
   std::vector<wasm_cpp::NodeInfo> nodes;
   wasm_cpp::graph::get_nodes(*e.ctx, &nodes);
   std::string names;
@@ -791,11 +791,14 @@ int role_graph()
   out("RESULT nodes=%s", names.c_str());
   out("RESULT topics=%s", ts.c_str());
   out("RESULT services=%s", ss.c_str());
+  bool gid_ok = false;
+  for (auto & info : pubs) {
+    gid_ok = gid_ok || (info.gid == pub->gid() && info.node_name == e.node->name());
+  }
   out(
     "RESULT pub_count=%zu pub_depth=%zu pub_gid_ok=%d sub_count=%zu missing_code=%d by_node=%s",
-    pubs.size(), pubs.empty() ? 0 : pubs[0].qos.depth,
-    !pubs.empty() && pubs[0].gid == pub->gid() ? 1 : 0, n_subs, static_cast<int>(missing.code()),
-    by_node.empty() ? "-" : by_node[0].name.c_str());
+    pubs.size(), pubs.empty() ? 0 : pubs[0].qos.depth, gid_ok ? 1 : 0, n_subs,
+    static_cast<int>(missing.code()), by_node.empty() ? "-" : by_node[0].name.c_str());
   if (!opt("signal").empty()) {
     send_signal(e, opt("signal"));
   }
@@ -843,6 +846,119 @@ int role_deadline()
   return s.ok() ? 0 : 12;
 }
 
+// Odds and ends: ignore_local_publications, service/client/event callbacks,
+// the C++ QoS compatibility check.
+std::mutex g_misc_mutex;
+std::condition_variable g_misc_cv;
+std::map<std::string, long> g_misc_events;  // NOLINT(runtime/int)
+
+void on_misc(const void * user, size_t n)
+{
+  std::lock_guard<std::mutex> lock(g_misc_mutex);
+  g_misc_events[static_cast<const char *>(user)] += static_cast<long>(n);  // NOLINT(runtime/int)
+  g_misc_cv.notify_all();
+}
+
+int role_misc()
+{
+  Env e = make_env("misc");
+  // ignore_local_publications: a subscription of this context does not hear
+  // its own publisher, one of another context does.
+  wasm_cpp::SubscriptionOptions ignore;
+  ignore.ignore_local_publications = true;
+  auto pub = must(Publisher::make(e.node, "/misc/local", "test_msgs/msg/Bytes", QoS()), "pub");
+  auto deaf = must(
+    Subscription::make(e.node, "/misc/local", "test_msgs/msg/Bytes", QoS(), ignore), "deaf");
+  auto other_ctx = must(Context::make(wasm_cpp::ContextOptions()), "context 2");
+  auto other_node = must(Node::make(other_ctx, "misc_other", "/"), "node 2");
+  auto hears = must(
+    Subscription::make(other_node, "/misc/local", "test_msgs/msg/Bytes", QoS(), ignore), "hears");
+  auto p = make_payload(0, 1, 8);
+  pub->publish(p.data(), p.size());
+  out(
+    "RESULT ignore_local_matched=%zu other_context_matched=%zu deaf_has_data=%d hears_has_data=%d",
+    deaf->matched_publisher_count(), hears->matched_publisher_count(), deaf->has_data() ? 1 : 0,
+    hears->has_data() ? 1 : 0);
+
+  // Callbacks of a service (requests), a client (responses) and an event.
+  auto srv = must(
+    Service::make(e.node, "/misc/srv", "test_msgs/srv/Echo", wasm_cpp::services_default_qos()), "srv");
+  auto cli = must(
+    Client::make(e.node, "/misc/srv", "test_msgs/srv/Echo", wasm_cpp::services_default_qos()), "cli");
+  srv->set_on_new_request_callback(&on_misc, "request");
+  cli->set_on_new_response_callback(&on_misc, "response");
+  QoS best_effort;
+  best_effort.reliability = wasm_cpp::Reliability::kBestEffort;
+  auto be_pub = must(Publisher::make(e.node, "/misc/incompat", "test_msgs/msg/Bytes", best_effort), "be pub");
+  auto offered = must(Event::make(be_pub, EventType::kOfferedQosIncompatible), "offered event");
+  offered->set_callback(&on_misc, "event");
+  auto reliable_sub = must(
+    Subscription::make(e.node, "/misc/incompat", "test_msgs/msg/Bytes", QoS()), "reliable sub");
+  for (int i = 0; i < 3; ++i) {
+    int64_t seq = 0;
+    cli->send_request(p.data(), p.size(), &seq);
+  }
+  {
+    std::unique_lock<std::mutex> lock(g_misc_mutex);
+    g_misc_cv.wait_for(lock, std::chrono::seconds(5), []() {
+        return g_misc_events["request"] >= 3 && g_misc_events["event"] >= 1;
+      });
+  }
+  Message m;
+  ServiceInfo info;
+  bool taken = false;
+  while (srv->take_request(&m, &info, &taken).ok() && taken) {
+    srv->send_response(info.request_id, m.data.get(), m.size);
+  }
+  {
+    std::unique_lock<std::mutex> lock(g_misc_mutex);
+    g_misc_cv.wait_for(lock, std::chrono::seconds(5), []() {return g_misc_events["response"] >= 3;});
+    out(
+      "RESULT request_events=%ld response_events=%ld event_events=%ld",
+      g_misc_events["request"], g_misc_events["response"], g_misc_events["event"]);
+  }
+  srv->set_on_new_request_callback(nullptr, nullptr);
+  cli->set_on_new_response_callback(nullptr, nullptr);
+  offered->set_callback(nullptr, nullptr);
+
+  // The C++ compatibility check (what rmw_qos_profile_check_compatible returns).
+  struct Case
+  {
+    const char * name;
+    QoS pub;
+    QoS sub;
+  };
+  QoS def;
+  QoS be = def;
+  be.reliability = wasm_cpp::Reliability::kBestEffort;
+  QoS tl = def;
+  tl.durability = wasm_cpp::Durability::kTransientLocal;
+  QoS dl100 = def;
+  dl100.deadline = 100000000;
+  QoS dl200 = def;
+  dl200.deadline = 200000000;
+  QoS manual = def;
+  manual.liveliness = wasm_cpp::Liveliness::kManualByTopic;
+  QoS sysdef = def;
+  sysdef.reliability = wasm_cpp::Reliability::kSystemDefault;
+  const Case cases[] = {
+    {"same", def, def}, {"be_pub_rel_sub", be, def}, {"rel_pub_be_sub", def, be},
+    {"vol_pub_tl_sub", def, tl}, {"no_deadline_pub", def, dl100},
+    {"longer_deadline_pub", dl200, dl100}, {"auto_pub_manual_sub", def, manual},
+    {"sysdef_pub_rel_sub", sysdef, def},
+  };
+  std::string res;
+  for (const Case & c : cases) {
+    wasm_cpp::QosPolicyKind kind = wasm_cpp::QosPolicyKind::kInvalid;
+    std::string reason;
+    auto r = wasm_cpp::check_qos_compatible(c.pub, c.sub, &kind, &reason);
+    res += std::string(res.empty() ? "" : ",") + c.name + ":" + std::to_string(static_cast<int>(r)) +
+      ":" + std::to_string(r == wasm_cpp::QosCompatibility::kOk ? 0 : static_cast<int>(kind));
+  }
+  out("RESULT qos_checks=%s", res.c_str());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char ** argv)
@@ -872,6 +988,7 @@ int main(int argc, char ** argv)
   if (role == "callbacks") {return role_callbacks();}
   if (role == "graph") {return role_graph();}
   if (role == "deadline") {return role_deadline();}
+  if (role == "misc") {return role_misc();}
   std::printf("ERROR unknown role '%s'\n", role.c_str());
   return 2;
 }

@@ -1,0 +1,125 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""
+Test the wasm_js runtime around the nodes.
+
+The non-isolated page message, the Node.js runner (cli.mjs) and executables
+run alone (private bus).
+"""
+
+import os
+from pathlib import Path
+import shutil
+import subprocess
+
+from core import harness
+import pytest
+
+
+def _cli(*args, env=None, timeout=120):
+    core = harness.get_build()
+    full = dict(os.environ, **(env or {}))
+    return subprocess.run(
+        ['node', str(core.src / 'cli.mjs')] + [str(a) for a in args],
+        capture_output=True, text=True, timeout=timeout, env=full)
+
+
+def test_page_without_isolation_says_which_headers_to_serve():
+    reason = harness.browser_skip_reason()
+    if reason:
+        pytest.skip(reason)
+    page = harness.get_browser().evaluate('/plain/page.html')
+    assert page['isolated'] is False
+    status = page['status']
+    assert status.startswith('IsolationError: '), status
+    assert 'Cross-Origin-Opener-Policy: same-origin' in status
+    assert 'Cross-Origin-Embedder-Policy: require-corp' in status
+
+
+def test_node_runner_starts_executables_on_one_bus():
+    exe = harness.get_build().core_node
+    done = _cli('--timeout', '60', '--name', 'listener', exe, 'sub',
+                '--count', '50', '--qos', 'keep_all', '---', '--name',
+                'talker', exe, 'pub', '--count', '50', '--qos', 'keep_all')
+    assert done.returncode == 0, done.stdout + done.stderr
+    lines = done.stdout.splitlines()
+    assert '[talker] RESULT matched=1' in lines, done.stdout
+    assert any(line.startswith('[listener] RESULT received=50 bad=0 '
+                               'out_of_order=0') for line in lines), done.stdout
+
+
+def test_node_runner_reports_a_failing_executable():
+    exe = harness.get_build().core_node
+    done = _cli('--name', 'lonely', exe, 'pub', '--match-timeout-ms', '300')
+    assert done.returncode == 4, done.stdout + done.stderr
+    assert '[lonely] ERROR only 0 of 1 subscriptions matched' in done.stdout
+    assert '[lonely] exited with code 4' in done.stderr
+
+
+def test_node_runner_usage_errors():
+    done = _cli()
+    assert done.returncode == 2
+    assert 'no executable given' in done.stderr and 'usage:' in done.stderr
+    done = _cli('--timeout', 'soon', 'x.js')
+    assert done.returncode == 2
+    assert '--timeout needs a non-negative number, got "soon"' in done.stderr
+    done = _cli('missing.js')
+    assert done.returncode == 1
+    assert 'missing' in (done.stdout + done.stderr)
+
+
+def test_executable_alone_creates_a_private_bus():
+    # `node exe.js` without the runtime: the JS library finds wasm_js next
+    # to the install space and creates a bus for this one process.
+    exe = harness.get_build().core_node
+    env = {k: v for k, v in os.environ.items()
+           if k not in ('WASM_JS_DIR', 'AMENT_PREFIX_PATH', 'CMAKE_PREFIX_PATH',
+                        'COLCON_PREFIX_PATH')}
+    done = subprocess.run(['node', str(exe), 'errors'], capture_output=True,
+                          text=True, timeout=120, env=env)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert 'RESULT after_errors_ok=1 max_ok=1' in done.stdout
+
+
+def test_executable_alone_without_wasm_js_gets_a_clear_error(tmp_path):
+    core = harness.get_build()
+    for suffix in ('.js', '.wasm', '.worker.js'):
+        shutil.copy(core.bin / f'core_node{suffix}', tmp_path)
+    env = {k: v for k, v in os.environ.items()
+           if k not in ('WASM_JS_DIR', 'AMENT_PREFIX_PATH', 'CMAKE_PREFIX_PATH',
+                        'COLCON_PREFIX_PATH')}
+    done = subprocess.run(['node', str(tmp_path / 'core_node.js'), 'errors'],
+                          capture_output=True, text=True, timeout=120,
+                          env=env, cwd=tmp_path)
+    assert done.returncode == 3, done.stdout + done.stderr
+    assert 'ERROR context: wasm_cpp: no bus is attached' in done.stdout
+    assert 'WASM_JS_DIR' in done.stdout
+    # With WASM_JS_DIR it works from anywhere.
+    env['WASM_JS_DIR'] = str(core.share)
+    done = subprocess.run(['node', str(tmp_path / 'core_node.js'), 'errors'],
+                          capture_output=True, text=True, timeout=120,
+                          env=env, cwd=tmp_path)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert Path(tmp_path / 'core_node.js').is_file()
+
+
+def test_log_severity_is_read_through_ansi_colours():
+    # rcutils colours console lines because isatty() is true under Emscripten
+    runtime = Path(__file__).resolve().parent.parent / 'packages' / \
+        'wasm_js' / 'src' / 'runtime.mjs'
+    script = (
+        'import("' + runtime.as_uri() + '").then((m) => {'
+        ' for (const line of ["\\x1b[33m[WARN] [1.5] [n]: careful\\x1b[0m",'
+        ' "\\x1b[0m[INFO] [1.5] [n]: hello\\x1b[0m", "plain"]) {'
+        ' const text = m.stripAnsi(line);'
+        ' console.log(JSON.stringify([text, m.severityOf("stderr", text)]));'
+        ' } });')
+    done = subprocess.run(['node', '--input-type=module', '-e', script],
+                          capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.splitlines() == [
+        '["[WARN] [1.5] [n]: careful","WARN"]',
+        '["[INFO] [1.5] [n]: hello","INFO"]',
+        '["plain","ERROR"]',
+    ]
