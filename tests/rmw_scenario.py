@@ -139,5 +139,5 @@ def explain(report):
 
 
 def have_node():
-    """True when Node.js is on PATH."""
+    """Check that Node.js is on PATH."""
     return shutil.which('node') is not None

@@ -18,7 +18,6 @@
 import fs from 'node:fs';
 import http from 'node:http';
 import { createRequire } from 'node:module';
-import os from 'node:os';
 import path from 'node:path';
 import readline from 'node:readline';
 import { fileURLToPath } from 'node:url';
@@ -59,14 +58,13 @@ const server = http.createServer((req, res) => {
 await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
 const base = `http://127.0.0.1:${server.address().port}`;
 
-const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'rmw-wasm-chromium-'));
 const browser = await chromium.launch({
   executablePath: process.env.COLCON_WASM_CHROMIUM || '/usr/bin/chromium',
   headless: true,
   args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-    '--disable-background-networking', '--disable-component-update', '--disable-sync',
-    `--user-data-dir=${profile}`],
+    '--disable-background-networking', '--disable-component-update', '--disable-sync'],
 });
+// Playwright gives the browser a fresh temporary profile (--user-data-dir) itself.
 const context = await browser.newContext();
 
 async function runScenario(scenario) {
@@ -89,7 +87,6 @@ async function runScenario(scenario) {
 async function shutdown(code) {
   await browser.close().catch(() => {});
   server.close();
-  fs.rmSync(profile, { recursive: true, force: true });
   process.exit(code);
 }
 

@@ -22,5 +22,5 @@ if (!runtimePath || !scenarioPath) {
 const { Runtime } = await import(pathToFileURL(runtimePath).href);
 const scenario = JSON.parse(fs.readFileSync(scenarioPath, 'utf8'));
 const report = await runScenario(Runtime, scenario);
-process.stdout.write(JSON.stringify(report) + '\n');
-process.exit(0);
+// Let the (possibly large) report drain to the pipe before Node.js exits.
+process.stdout.write(JSON.stringify(report) + '\n', () => process.exit(0));

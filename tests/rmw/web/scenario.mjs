@@ -9,11 +9,15 @@
  *   {
  *     "runtime": {"maxMessageBytes": 1048576},   // Runtime.create() options
  *     "steps": [
- *       {"spawn": "talker", "exe": "<url or path of the .js>", "args": [], "env": {}},
+ *       {"spawn": "talker", "exe": "<url or path of the .js>", "args": [], "env": {},
+ *        "stdin": "text the executable reads as its standard input",
+ *        "files": {"/params.yaml": "file content"}},
  *       {"wait": "listener", "text": "I heard", "count": 3, "timeout": 20},
  *       {"wait": "listener", "regex": "^\\[WARN\\]", "timeout": 5},
  *       {"stop": "talker"},
  *       {"exit": "caller", "timeout": 10},             // wait for a process to end
+ *       {"quiet": "listener", "text": "I heard", "seconds": 2}, // no such line for 2 s
+ *       {"cpu": "idle", "seconds": 2},   // CPU time of the whole Node.js process (null in a page)
  *       {"graph": "after"},                            // record a graph snapshot
  *       {"graphWait": {"node": "/talker", "present": false}, "timeout": 5}
  *     ]
@@ -21,7 +25,8 @@
  *
  * Waits are driven by events (log lines, exits, graph changes); each has a
  * deadline. The report lists every log line with its severity, every exit,
- * the recorded graphs, and the first failed step with the reason.
+ * the recorded graphs and CPU loads (cores busy, Node.js only), and the first
+ * failed step with the reason.
  *
  * @module scenario
  */
@@ -34,7 +39,7 @@
  */
 export async function runScenario(Runtime, scenario) {
   const started = performance.now();
-  const report = { ok: true, error: null, logs: [], exits: {}, graphs: {}, seconds: 0 };
+  const report = { ok: true, error: null, logs: [], exits: {}, graphs: {}, cpu: {}, seconds: 0 };
   const processes = new Map();
   const waiters = new Set();
 
@@ -74,6 +79,8 @@ export async function runScenario(Runtime, scenario) {
             url: step.exe,
             args: step.args || [],
             env: step.env || {},
+            stdin: step.stdin,
+            files: step.files,
             name: step.spawn,
             onLog: ({ stream, severity, text }) => {
               report.logs.push({
@@ -95,6 +102,27 @@ export async function runScenario(Runtime, scenario) {
             (regex ? regex.test(l.text) : l.text.includes(step.text))).length;
           await until(() => matches() >= count, timeout,
             `${count} line(s) of '${step.wait}' matching ${JSON.stringify(step.regex || step.text)}`);
+        } else if (step.quiet) {
+          const regex = step.regex ? new RegExp(step.regex) : null;
+          const matching = () => report.logs.some((l) => l.name === step.quiet &&
+            (regex ? regex.test(l.text) : l.text.includes(step.text)));
+          const appeared = await until(matching, step.seconds, 'silence')
+            .then(() => true, () => false);
+          if (appeared) {
+            throw new Error(`'${step.quiet}' printed ${JSON.stringify(step.regex || step.text)} ` +
+              `within ${step.seconds} s`);
+          }
+        } else if (step.cpu) {
+          const usage = globalThis.process && typeof globalThis.process.cpuUsage === 'function'
+            ? globalThis.process.cpuUsage.bind(globalThis.process) : null;
+          const before = usage ? usage() : null;
+          await new Promise((resolve) => setTimeout(resolve, step.seconds * 1000));
+          if (usage) {
+            const delta = usage(before);
+            report.cpu[step.cpu] = (delta.user + delta.system) / 1e6 / step.seconds;
+          } else {
+            report.cpu[step.cpu] = null;
+          }
         } else if (step.exit) {
           await until(() => report.exits[step.exit], timeout, `'${step.exit}' to exit`);
         } else if (step.stop) {
