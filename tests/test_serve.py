@@ -68,7 +68,12 @@ def install(tmp_path_factory):
                                                   'actions': {}}))
     runtime = root / 'runtime'
     runtime.mkdir()
-    (runtime / 'index.mjs').write_text('export const x = 1;\n' * 100)
+    (runtime / 'index.mjs').write_text("import { y } from './dep.mjs';\n"
+                                       + 'export const x = 1;\n' * 100)
+    (runtime / 'dep.mjs').write_text(
+        "export { z } from './tools/deep.mjs';\nexport const y = 2;\n")
+    (runtime / 'tools').mkdir()
+    (runtime / 'tools' / 'deep.mjs').write_text('export const z = 3;\n')
     (runtime / 'index.mjs.gz').write_bytes(gzip.compress(b'precompressed'))
     (runtime / 'sub').mkdir()
     os.symlink('/etc/hostname', runtime / 'link_out.mjs')
@@ -248,6 +253,17 @@ def test_page_embeds_the_workspace(server):
     start = html.index('id="workspace">') + len('id="workspace">')
     embedded = json.loads(html[start:html.index('</script>', start)])
     assert embedded['packages'][0]['executables'][0]['name'] == 'talker'
+
+
+def test_page_preloads_its_module_graph_and_the_run_executables(server):
+    _, _, body = _get(server, '/?run=demo_nodes/talker&run=demo_nodes/nope')
+    html = body.decode()
+    for module in ('/launcher/app.mjs', '/launcher/session.mjs', '/launcher/views/topics.mjs',
+                   '/wasm_js/index.mjs', '/wasm_js/dep.mjs', '/wasm_js/tools/deep.mjs'):
+        assert '<link rel="modulepreload" href="{}">'.format(module) in html, module
+    assert '<link rel="preload" href="/ws/demo_nodes/lib/demo_nodes/talker.wasm" as="fetch" ' \
+        'crossorigin>' in html
+    assert html.count('rel="preload"') == 1
 
 
 def test_port_already_taken_is_a_clear_error(install, server):
