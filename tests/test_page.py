@@ -81,7 +81,9 @@ def test_demo_flow_in_the_browser(served_demo):
                  'plot-of-a-numeric-topic', 'echo-keeps-up-with-1-kHz'):
         assert name in steps, 'step {} did not run'.format(name)
     first = steps['open-with-run-talker-listener']['first_publish_ms']
-    print('page open -> first publish: {} ms (goal: 1000 ms)'.format(first))
+    warm = steps['reopen-warm-first-publish']['first_publish_ms']
+    print('page open -> first publish: {} ms, {} ms with warm caches (goal: 1000 ms)'.format(
+        first, warm))
     fast = steps['echo-keeps-up-with-1-kHz']
     print('echo of a 1 kHz topic: {} msg/s, longest frame {} ms'.format(
         fast['echo_rate_hz'], fast['max_frame_gap_ms']))

@@ -233,6 +233,18 @@ async function demoFlow() {
     await page.locator('.logtabs button[data-log^="listener"]').click();
     await page.locator('.logpane .logline', { hasText: 'I heard' }).first().waitFor({ timeout: STEP_TIMEOUT });
   });
+  await page.close();
+
+  // the same page again in this browser (HTTP and code caches warm)
+  const again = await context.newPage();
+  again.on('pageerror', (e) => pageErrors.push(e.message));
+  await again.addInitScript(RECORD_LOGS);
+  await step(again, 'reopen-warm-first-publish', async () => {
+    await again.goto(`${options.url}?run=demo_nodes/talker`);
+    await waitForLog(again, 'talker', /Publishing: 'Hello World: 1'/);
+    const firstPublish = await again.evaluate(() => window.__launcherLogs.find((l) => /Publishing:/.test(l.text)).time);
+    return { first_publish_ms: Math.round(firstPublish) };
+  });
   await context.close();
 }
 
