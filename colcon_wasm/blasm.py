@@ -1,0 +1,125 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""
+`blasm`: the thesis' build script (appendix C.1) on top of `colcon build --wasm`.
+
+It keeps the thesis' options. Unlike the thesis' script, `-d` works (it was
+missing from that script's getopts string), a build without `-u`/`-s` builds
+the whole workspace, and every argument blasm does not know is passed to
+`colcon build`.
+"""
+
+import argparse
+from pathlib import Path
+import shlex
+import shutil
+import sys
+
+PYTHON_REFUSAL = (
+    'blasm -p (Python in the browser) is not supported: rclpy and '
+    'rosidl_generator_py need a CPython built for WebAssembly '
+    '(emscripten-forge), which colcon-wasm does not provide; build C/C++ '
+    'packages only (the recipe skips rclpy and rosidl_generator_py)')
+
+BUILD_BASE = 'build_wasm'
+INSTALL_BASE = 'install_wasm'
+LOG_BASE = 'log'
+
+
+def create_parser():
+    """Create blasm's argument parser (the thesis' options)."""
+    parser = argparse.ArgumentParser(
+        prog='blasm', add_help=False,
+        description='Build ROS 2 packages to WebAssembly '
+                    '(`colcon build --wasm`). Arguments blasm does not know '
+                    'are passed to colcon build.')
+    parser.add_argument('-h', action='help', help='help')
+    parser.add_argument('-c', action='store_true', dest='clean',
+                        help=f'clean workspace ({BUILD_BASE}/, '
+                             f'{INSTALL_BASE}/, {LOG_BASE}/) and exit')
+    parser.add_argument('-d', action='store_true', dest='debug',
+                        help='activate debug mode (--wasm-debug: -g and '
+                             'assertions; verbose CMake makefiles)')
+    parser.add_argument('-u', metavar='PKG', dest='up_to',
+                        help='build up to package')
+    parser.add_argument('-s', metavar='PKG', dest='select',
+                        help='build selected package (from a clean build '
+                             'folder)')
+    parser.add_argument('-i', metavar="'PKG ...'", dest='ignore',
+                        help="ignore 'listed packages'")
+    parser.add_argument('-p', action='store_true', dest='python',
+                        help='install emscripten python (refused: not '
+                             'supported)')
+    parser.add_argument('-v', action='store_true', dest='verbose',
+                        help='verbose')
+    return parser
+
+
+def colcon_arguments(options, extra):
+    """
+    Translate blasm options into `colcon build` arguments.
+
+    :param options: parsed blasm options
+    :param list extra: arguments passed through to colcon
+    :rtype: list
+    """
+    args = ['build', '--wasm']
+    if options.up_to:
+        args += ['--packages-up-to', options.up_to]
+    if options.select:
+        args += ['--packages-select', options.select]
+    if options.ignore:
+        args += ['--packages-ignore'] + options.ignore.split()
+    if options.verbose:
+        args += ['--event-handlers', 'console_direct+']
+    if options.debug:
+        args += ['--wasm-debug']
+    extra = [a for a in extra if a != '--']
+    if options.debug:
+        # --cmake-args takes the rest of the line: keep it last
+        extra += ['--cmake-args', '-DCMAKE_VERBOSE_MAKEFILE=ON']
+    return args + extra
+
+
+def clean(workspace):
+    """Remove the wasm build, install and log folders of a workspace."""
+    for name in (BUILD_BASE, INSTALL_BASE, LOG_BASE):
+        path = Path(workspace) / name
+        if path.is_dir():
+            shutil.rmtree(path)
+            print(f'[BLASM]: removed {path}')
+
+
+def main(argv=None, *, run_colcon=None):
+    """
+    Run blasm.
+
+    :param argv: the arguments (default: sys.argv[1:])
+    :param run_colcon: the function running colcon with a list of arguments
+      (default: colcon in this Python environment)
+    :returns: the exit code
+    """
+    options, extra = create_parser().parse_known_args(argv)
+    if options.python:
+        print(f'[BLASM]: {PYTHON_REFUSAL}', file=sys.stderr)
+        return 2
+    workspace = Path.cwd()
+    if options.clean:
+        clean(workspace)
+        return 0
+    if not (workspace / 'src').is_dir():
+        print(f"[BLASM]: '{workspace}' is not a workspace directory (no "
+              'src/ folder): run blasm in the workspace root',
+              file=sys.stderr)
+        return 1
+    if options.select:
+        stale = workspace / BUILD_BASE / options.select
+        if stale.is_dir():
+            shutil.rmtree(stale)
+    args = colcon_arguments(options, extra)
+    print('[BLASM]: colcon ' + ' '.join(shlex.quote(a) for a in args))
+    if run_colcon is None:
+        from colcon_core.command import main as run_colcon
+        return run_colcon(argv=args)
+    return run_colcon(args)

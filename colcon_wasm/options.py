@@ -1,0 +1,123 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""The `--wasm*` command line options and the settings they give."""
+
+import os
+import sys
+
+from colcon_core.environment_variable import EnvironmentVariable
+from colcon_wasm import resources
+
+OPT_LEVELS = ('1', '2', '3', 's', 'z')
+
+"""Environment variable: default size of the pthread pool."""
+PTHREAD_POOL_SIZE_ENVIRONMENT_VARIABLE = EnvironmentVariable(
+    'COLCON_WASM_PTHREAD_POOL_SIZE',
+    'Set the default number of workers started with each --wasm executable')
+PTHREAD_POOL_SIZE_ENV = PTHREAD_POOL_SIZE_ENVIRONMENT_VARIABLE.name
+
+
+def add_wasm_arguments(parser):
+    """
+    Add the `--wasm*` options to a colcon verb's parser.
+
+    :param parser: the argument parser (or group)
+    """
+    parser.add_argument(
+        '--wasm', action='store_true',
+        help='Build to WebAssembly with Emscripten (default bases: '
+             'build_wasm/ and install_wasm/)')
+    parser.add_argument(
+        '--wasm-emscripten', metavar='PATH',
+        help='Emscripten to use: an emcc executable, an emsdk folder or an '
+             'Emscripten root (default: $EMSDK, then emcc on PATH, then '
+             '/usr/share/emscripten)')
+    parser.add_argument(
+        '--wasm-recipe', metavar='FILE', action='append', default=[],
+        help='Recipe file applied on top of the default Humble recipe '
+             '(repeatable, applied in order)')
+    parser.add_argument(
+        '--wasm-debug', action='store_true',
+        help='Debug build: -g and -sASSERTIONS=2')
+    parser.add_argument(
+        '--wasm-no-pthread', action='store_true',
+        help='Build without -pthread (no worker threads)')
+    parser.add_argument(
+        '--wasm-opt-level', choices=OPT_LEVELS, default='2',
+        help='Optimization level of Release builds (default: 2)')
+    parser.add_argument(
+        '--wasm-pthread-pool-size', type=int, metavar='N',
+        default=_default_pool_size(),
+        help='Workers started with each executable (default: '
+             f'${PTHREAD_POOL_SIZE_ENV} or 4)')
+
+
+def _default_pool_size():
+    try:
+        return int(os.environ.get(PTHREAD_POOL_SIZE_ENV, '4'))
+    except ValueError:
+        return 4
+
+
+class WasmSettings:
+    """The build settings derived from the `--wasm*` options."""
+
+    def __init__(self, args):
+        """Read the settings from parsed arguments."""
+        self.pthread = not getattr(args, 'wasm_no_pthread', False)
+        self.debug = bool(getattr(args, 'wasm_debug', False))
+        self.opt_level = str(getattr(args, 'wasm_opt_level', '2') or '2')
+        self.pthread_pool_size = int(
+            getattr(args, 'wasm_pthread_pool_size', 4) or 4)
+
+    def describe(self, cmake_args):
+        """Get the flags entry of the manifest."""
+        return {
+            'pthread': self.pthread, 'debug': self.debug,
+            'opt': self.opt_level, 'cmake_args': list(cmake_args)}
+
+
+def cmake_arguments(*, emscripten, settings, install_base, rule,
+                    project_name):
+    """
+    Get the CMake arguments colcon-wasm passes (before the user's).
+
+    Order: our cache variables, the initial cache file, the toolchain file,
+    the recipe's project include and cmake-args. The caller appends the
+    user's `--cmake-args`, so those override ours.
+
+    :param emscripten: the :class:`colcon_wasm.toolchain.Emscripten`
+    :param settings: the :class:`WasmSettings`
+    :param str install_base: the wasm install base (absolute)
+    :param rule: the recipe's :class:`PackageRule` for the package
+    :param str project_name: the package name (for the project include)
+    :rtype: list
+    """
+    on_off = {True: 'ON', False: 'OFF'}
+    args = [
+        # PYTHON_EXECUTABLE etc. are unused by many packages: no warning
+        '--no-warn-unused-cli',
+        f'-DCOLCON_WASM_EMSCRIPTEN_ROOT={emscripten.root}',
+        f'-DCOLCON_WASM_EMSCRIPTEN_BIN={emscripten.bin_dir}',
+        f'-DCOLCON_WASM_INSTALL_BASE={install_base}',
+        f'-DCOLCON_WASM_PTHREAD={on_off[settings.pthread]}',
+        f'-DCOLCON_WASM_PTHREAD_POOL_SIZE={settings.pthread_pool_size}',
+        f'-DCOLCON_WASM_DEBUG={on_off[settings.debug]}',
+        f'-DCOLCON_WASM_OPT_LEVEL={settings.opt_level}',
+        '-C', str(resources.file('toolchains', 'wasm-ros-cache.cmake')),
+        '-DCMAKE_TOOLCHAIN_FILE=' + str(
+            resources.file('toolchains', 'wasm-ros.cmake')),
+        # the interpreter running colcon has the code generators' modules
+        f'-DPYTHON_EXECUTABLE={sys.executable}',
+        f'-DPython3_EXECUTABLE={sys.executable}',
+    ]
+    if rule.env:
+        # set while CMake configures the package (see toolchains/wasm-ros.cmake)
+        args.append('-DCOLCON_WASM_ENV=' + ';'.join(
+            f'{key}={value}' for key, value in sorted(rule.env.items())))
+    if rule.project_include:
+        args.append(
+            f'-DCMAKE_PROJECT_{project_name}_INCLUDE={rule.project_include}')
+    args += rule.cmake_args
+    return args

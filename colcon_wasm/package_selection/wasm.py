@@ -1,0 +1,376 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""
+Select and prepare the packages of a `--wasm` build.
+
+Two extensions, because colcon runs package selection extensions by
+priority:
+
+* :class:`WasmDependencyPackageSelection` (high priority, runs first) adds the
+  recipe's extra dependencies (`depends`), so that `--packages-up-to` and the
+  build order see them;
+* :class:`WasmPackageSelection` (low priority, runs last, after the user's
+  own selection) unselects what the recipe skips and pure Python packages,
+  checks that nothing selected needs a skipped package, keeps a workspace
+  copy of a bundled package over the bundled one, and switches CMake package
+  types to the `wasm.*` build tasks.
+"""
+
+import os
+from pathlib import Path
+
+from colcon_core.dependency_descriptor import DependencyDescriptor
+from colcon_core.logging import colcon_logger
+from colcon_core.package_selection import PackageSelectionExtensionPoint
+from colcon_core.plugin_system import satisfies_version
+from colcon_core.topological_order import topological_order_decorators
+from colcon_wasm.error import ColconWasmError
+from colcon_wasm.error import exit_message
+from colcon_wasm.options import add_wasm_arguments
+from colcon_wasm.options import WasmSettings
+from colcon_wasm.package_discovery.bundled import is_bundled
+from colcon_wasm.plan import BuildPlan
+from colcon_wasm.plan import PLAN_KEY
+from colcon_wasm.recipe import load_recipe
+from colcon_wasm.toolchain import find_emscripten
+
+logger = colcon_logger.getChild(__name__)
+
+"""Package types built by the wasm task, and their `wasm.*` names."""
+WASM_TYPES = {
+    'cmake': 'wasm.cmake',
+    'ros.cmake': 'wasm.ros.cmake',
+    'ros.ament_cmake': 'wasm.ros.ament_cmake',
+}
+
+"""Dependency categories that must be buildable (tests are off)."""
+NEEDED_CATEGORIES = ('build', 'run')
+
+"""Marker in a CMake cache written by a colcon-wasm configure."""
+WASM_CACHE_MARKER = 'COLCON_WASM_EMSCRIPTEN_ROOT:'
+
+_RECIPE_ATTR = '_colcon_wasm_recipe'
+
+
+def get_recipe(args):
+    """
+    Load the recipe once per command (default recipe + `--wasm-recipe`).
+
+    :raises SystemExit: with one line naming file, line and key
+    """
+    recipe = getattr(args, _RECIPE_ATTR, None)
+    if recipe is None:
+        try:
+            recipe = load_recipe(getattr(args, 'wasm_recipe', None) or [])
+        except ColconWasmError as e:
+            raise SystemExit(exit_message(e)) from e
+        setattr(args, _RECIPE_ATTR, recipe)
+    return recipe
+
+
+def _is_build_verb(args):
+    return getattr(args, 'verb_name', None) == 'build' or \
+        hasattr(args, 'build_base') and hasattr(args, 'install_base')
+
+
+def find_build_folders(build_base, *, wasm):
+    """
+    List package build folders of the other kind (native vs wasm).
+
+    :param build_base: the build base
+    :param bool wasm: True to find native folders, False to find wasm ones
+    :returns: sorted folder paths
+    """
+    base = Path(build_base)
+    if not base.is_dir():
+        return []
+    found = []
+    for cache in sorted(base.glob('*/CMakeCache.txt')):
+        try:
+            text = cache.read_text(errors='replace')
+        except OSError:
+            continue
+        is_wasm = WASM_CACHE_MARKER in text
+        if is_wasm != wasm:
+            found.append(cache.parent)
+    return found
+
+
+def check_build_base(args):
+    """
+    Refuse to mix native and wasm builds in one build base.
+
+    :raises SystemExit: naming the folders and what to do
+    """
+    build_base = getattr(args, 'build_base', None)
+    if build_base is None:
+        return
+    wasm = bool(getattr(args, 'wasm', False))
+    folders = find_build_folders(build_base, wasm=wasm)
+    if not folders:
+        return
+    names = ', '.join(f"'{f}'" for f in folders[:5])
+    more = f' and {len(folders) - 5} more' if len(folders) > 5 else ''
+    if wasm:
+        raise SystemExit(exit_message(ColconWasmError(
+            f"build base '{build_base}' holds native builds ({names}{more}); "
+            'a --wasm build must not reuse them: drop --build-base (the '
+            "default is 'build_wasm') or remove those folders")))
+    raise SystemExit(exit_message(ColconWasmError(
+        f"build base '{build_base}' holds --wasm builds ({names}{more}); "
+        'add --wasm, or use another --build-base for native builds'),
+        command='colcon build'))
+
+
+def prepare_environment(args):
+    """
+    Find Emscripten and set the environment of the whole build.
+
+    :returns: the :class:`colcon_wasm.toolchain.Emscripten`
+    :raises SystemExit: with one line when no usable Emscripten is found
+    """
+    try:
+        emscripten = find_emscripten(getattr(args, 'wasm_emscripten', None))
+    except ColconWasmError as e:
+        raise SystemExit(exit_message(e)) from e
+    os.environ.update(emscripten.environment())
+    os.environ.update(get_recipe(args).env)
+    logger.info(
+        f'Using Emscripten {emscripten.version_string} in '
+        f"'{emscripten.root}' ({emscripten.source})")
+    return emscripten
+
+
+class WasmDependencyPackageSelection(PackageSelectionExtensionPoint):
+    """Add the recipe's extra dependencies before the user's selection."""
+
+    PRIORITY = 1000
+
+    def __init__(self):  # noqa: D107
+        super().__init__()
+        satisfies_version(
+            PackageSelectionExtensionPoint.EXTENSION_POINT_VERSION, '^1.0')
+
+    def select_packages(self, *, args, decorators):  # noqa: D102
+        if not getattr(args, 'wasm', False):
+            return
+        recipe = get_recipe(args)
+        by_name = {}
+        for decorator in decorators:
+            by_name.setdefault(decorator.descriptor.name, []).append(decorator)
+        added = {}
+        for name, rule in recipe.packages.items():
+            for dep in rule.depends:
+                if name not in by_name or dep not in by_name:
+                    continue
+                for decorator in by_name[name]:
+                    for category in NEEDED_CATEGORIES:
+                        decorator.descriptor.dependencies.setdefault(
+                            category, set()).add(DependencyDescriptor(dep))
+                added.setdefault(name, set()).add(dep)
+        if not added:
+            return
+        _extend_recursive_dependencies(decorators, added)
+        decorators[:] = topological_order_decorators(decorators)
+
+
+def _extend_recursive_dependencies(decorators, added):
+    """Add new edges (name -> deps) to every affected decorator."""
+    recursive = {}
+    for decorator in decorators:
+        recursive[decorator.descriptor.name] = set(
+            str(d) for d in decorator.recursive_dependencies)
+    changed = True
+    while changed:
+        changed = False
+        for name, deps in recursive.items():
+            extra = set()
+            for source in [name] + list(deps):
+                for dep in added.get(source, ()):
+                    extra.add(dep)
+                    extra |= recursive.get(dep, set())
+            extra.discard(name)
+            if not extra <= deps:
+                deps |= extra
+                changed = True
+    lookup = {d.descriptor.name: d.descriptor for d in decorators}
+    for decorator in decorators:
+        names = recursive[decorator.descriptor.name]
+        existing = {str(d): d for d in decorator.recursive_dependencies}
+        decorator.recursive_dependencies = [
+            existing.get(n) or DependencyDescriptor(
+                n, metadata={'origin': 'colcon-wasm recipe'})
+            for n in sorted(names) if n in lookup or n in existing]
+
+
+class WasmPackageSelection(PackageSelectionExtensionPoint):
+    """Select the packages of a `--wasm` build (`colcon build --wasm`)."""
+
+    # lowest priority: runs after the user's selection options
+    PRIORITY = 10
+
+    def __init__(self):  # noqa: D107
+        super().__init__()
+        satisfies_version(
+            PackageSelectionExtensionPoint.EXTENSION_POINT_VERSION, '^1.0')
+
+    def add_arguments(self, *, parser):  # noqa: D102
+        add_wasm_arguments(parser)
+
+    def check_parameters(self, *, args, pkg_names):  # noqa: D102
+        if _is_build_verb(args):
+            check_build_base(args)
+        if not getattr(args, 'wasm', False):
+            return
+        get_recipe(args)
+        if _is_build_verb(args):
+            setattr(args, '_colcon_wasm_emscripten',
+                    prepare_environment(args))
+
+    def select_packages(self, *, args, decorators):  # noqa: D102
+        if not getattr(args, 'wasm', False):
+            return
+        recipe = get_recipe(args)
+        _check_workspace_not_empty(args, decorators)
+        _prefer_workspace_copies(decorators)
+        left_out = set()
+        for decorator in decorators:
+            if decorator.selected:
+                _select_one(decorator, recipe)
+            if _never_built(decorator.descriptor, recipe):
+                left_out.add(decorator.descriptor.name)
+        _check_skipped_dependencies(decorators, recipe)
+        _forget_left_out(decorators, left_out)
+        _trim_unused_bundled(decorators)
+        emscripten = getattr(args, '_colcon_wasm_emscripten', None)
+        settings = WasmSettings(args)
+        for decorator in decorators:
+            pkg = decorator.descriptor
+            if decorator.selected and pkg.type in WASM_TYPES:
+                pkg.metadata[PLAN_KEY] = BuildPlan(
+                    original_type=pkg.type, recipe=recipe,
+                    rule=recipe.rule(pkg.name), emscripten=emscripten,
+                    settings=settings)
+                pkg.type = WASM_TYPES[pkg.type]
+
+
+def _check_workspace_not_empty(args, decorators):
+    if any(not is_bundled(d.descriptor) for d in decorators):
+        return
+    paths = getattr(args, 'paths', None) or \
+        getattr(args, 'base_paths', None) or ['.']
+    raise SystemExit(exit_message(ColconWasmError(
+        'no packages found in ' + ', '.join(f"'{p}'" for p in paths)
+        + f" (from '{os.getcwd()}'); run it in a workspace whose src/ "
+        'holds packages, or pass --base-paths / --paths')))
+
+
+def _prefer_workspace_copies(decorators):
+    workspace = {d.descriptor.name: d.descriptor for d in decorators
+                 if not is_bundled(d.descriptor)}
+    for decorator in decorators:
+        pkg = decorator.descriptor
+        if is_bundled(pkg) and pkg.name in workspace and decorator.selected:
+            logger.info(
+                f"Using the workspace copy of '{pkg.name}' in "
+                f"'{workspace[pkg.name].path}' instead of the bundled one in "
+                f"'{pkg.path}'")
+            decorator.selected = False
+
+
+def _select_one(decorator, recipe):
+    """Unselect a package --wasm does not build."""
+    pkg = decorator.descriptor
+    reason = recipe.skip_reason(pkg.name)
+    if reason:
+        logger.info(f"Skipping '{pkg.name}' for --wasm: {reason}")
+    elif pkg.type in WASM_TYPES:
+        return
+    elif pkg.name in recipe.host_tools:
+        logger.info(
+            f"Building host tool '{pkg.name}' ({pkg.type}) with its usual "
+            'task: it runs on the host at configure time')
+        return
+    else:
+        logger.info(
+            f"Skipping '{pkg.name}' for --wasm: a '{pkg.type}' package, only "
+            'CMake packages are built to WebAssembly')
+    decorator.selected = False
+
+
+def _never_built(pkg, recipe):
+    """Check if --wasm never builds a package (whatever the selection)."""
+    if recipe.skip_reason(pkg.name):
+        return True
+    return pkg.type not in WASM_TYPES and pkg.name not in recipe.host_tools
+
+
+def _forget_left_out(decorators, left_out):
+    """
+    Remove the packages --wasm leaves out from everyone's dependencies.
+
+    colcon expects every dependency of a job to be installed (it sources
+    their environment); packages left out of a --wasm build never will be.
+    Packages the user unselected stay: colcon expects them built already.
+    """
+    if not left_out:
+        return
+    for decorator in decorators:
+        decorator.recursive_dependencies = [
+            d for d in decorator.recursive_dependencies
+            if str(d) not in left_out]
+
+
+def _dependency_names(pkg):
+    names = set()
+    for category in NEEDED_CATEGORIES:
+        names |= {str(d) for d in pkg.dependencies.get(category, ())}
+    return names
+
+
+def _check_skipped_dependencies(decorators, recipe):
+    problems = []
+    for decorator in decorators:
+        pkg = decorator.descriptor
+        if not decorator.selected or pkg.type not in WASM_TYPES:
+            continue
+        allowed = set(recipe.rule(pkg.name).drop_depends)
+        for dep in sorted(_dependency_names(pkg)):
+            reason = recipe.skip_reason(dep)
+            if reason and dep not in allowed:
+                problems.append(
+                    f"  package '{pkg.name}' depends on '{dep}', which "
+                    f'--wasm skips ({reason})')
+    if problems:
+        raise SystemExit(exit_message(ColconWasmError(
+            f'{len(problems)} dependencies on packages that --wasm skips '
+            '(remove the dependency, or allow dropping it in a recipe '
+            "overlay given with --wasm-recipe: 'packages: {PKG: "
+            "{drop-depends: [DEP]}}'):\n" + '\n'.join(problems))))
+
+
+def _trim_unused_bundled(decorators):
+    """Build bundled packages only when a selected package needs them."""
+    selected = [d for d in decorators if d.selected]
+    if all(is_bundled(d.descriptor) for d in selected):
+        return  # the user selected bundled packages only
+    recursive = {d.descriptor.name: {str(n) for n in d.recursive_dependencies}
+                 for d in selected}
+    needed = set()
+    for decorator in selected:
+        if not is_bundled(decorator.descriptor):
+            needed |= recursive[decorator.descriptor.name]
+    pending = list(needed)
+    while pending:
+        for dep in recursive.get(pending.pop(), ()):
+            if dep not in needed:
+                needed.add(dep)
+                pending.append(dep)
+    for decorator in selected:
+        pkg = decorator.descriptor
+        if is_bundled(pkg) and pkg.name not in needed:
+            logger.info(
+                f"Skipping bundled package '{pkg.name}': no selected package "
+                'depends on it')
+            decorator.selected = False

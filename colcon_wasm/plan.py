@@ -1,0 +1,29 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""What package selection hands to the wasm build task, per package."""
+
+"""Descriptor metadata key holding the :class:`BuildPlan`."""
+PLAN_KEY = 'colcon_wasm'
+
+
+class BuildPlan:
+    """How one package is built with `--wasm`."""
+
+    def __init__(self, *, original_type, recipe, rule, emscripten, settings):
+        """
+        Describe the wasm build of a package.
+
+        :param str original_type: the package type before the switch to
+          `wasm.*` (selects the stock colcon task that does the work)
+        :param recipe: the :class:`colcon_wasm.recipe.Recipe`
+        :param rule: the recipe's :class:`PackageRule` for this package
+        :param emscripten: the :class:`colcon_wasm.toolchain.Emscripten`
+          (None for verbs that do not build, e.g. `colcon list`)
+        :param settings: the :class:`colcon_wasm.options.WasmSettings`
+        """
+        self.original_type = original_type
+        self.recipe = recipe
+        self.rule = rule
+        self.emscripten = emscripten
+        self.settings = settings

@@ -1,0 +1,137 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""The `wasm.*` build task: the stock colcon task plus the wasm steps."""
+
+import json
+from pathlib import Path
+
+from colcon_core.logging import colcon_logger
+from colcon_core.plugin_system import satisfies_version
+from colcon_core.task import get_task_extension
+from colcon_core.task import TaskExtensionPoint
+from colcon_wasm.error import ColconWasmError
+from colcon_wasm.error import exit_message
+from colcon_wasm.options import cmake_arguments
+from colcon_wasm.patch import prepare_patched_source
+from colcon_wasm.plan import PLAN_KEY
+from colcon_wasm.postprocess import postprocess_package
+
+logger = colcon_logger.getChild(__name__)
+
+"""Folder (inside the build base) holding patched copies of sources."""
+PATCHED_SOURCES = Path('.colcon_wasm') / 'source'
+
+"""File in a package's build folder recording the toolchain settings."""
+SETTINGS_FILE = 'colcon_wasm_settings.json'
+
+
+def patched_source_folder(build_base, pkg_name):
+    """Get where the patched copy of a package's source is kept."""
+    return Path(build_base).parent / PATCHED_SOURCES / pkg_name
+
+
+class WasmBuildTask(TaskExtensionPoint):
+    """Build CMake, ros.cmake and ament_cmake packages to WebAssembly."""
+
+    def __init__(self):  # noqa: D107
+        super().__init__()
+        satisfies_version(TaskExtensionPoint.EXTENSION_POINT_VERSION, '^1.0')
+
+    async def build(self):  # noqa: D102
+        pkg = self.context.pkg
+        args = self.context.args
+        plan = pkg.metadata.get(PLAN_KEY)
+        if plan is None or plan.emscripten is None:
+            logger.error(
+                f"Package '{pkg.name}' has type '{pkg.type}' but no --wasm "
+                'build plan: build it with `colcon build --wasm`')
+            return 1
+        stock = get_task_extension(
+            'colcon_core.task.build', plan.original_type)
+        if stock is None:
+            logger.error(
+                f"No task extension to build a '{plan.original_type}' "
+                f"package ('{pkg.name}'); is colcon-cmake / colcon-ros "
+                'installed?')
+            return 1
+
+        try:
+            self._prepare_source(pkg, args, plan)
+        except ColconWasmError as e:
+            logger.error(exit_message(e))
+            return 1
+        self._clean_cache_on_new_settings(args, plan)
+        args.cmake_args = cmake_arguments(
+            emscripten=plan.emscripten, settings=plan.settings,
+            install_base=self._install_base(args), rule=plan.rule,
+            project_name=pkg.name) + list(args.cmake_args or [])
+
+        stock.set_context(context=self.context)
+        rc = await stock.build()
+        if rc:
+            return rc
+
+        self.progress('wasm')
+        try:
+            postprocess_package(
+                pkg_name=pkg.name,
+                pkg_version=pkg.metadata.get('version'),
+                build_base=args.build_base,
+                install_prefix=args.install_base,
+                emscripten=plan.emscripten.describe(),
+                recipe=plan.recipe.describe(),
+                flags=plan.settings.describe(args.cmake_args))
+        except ColconWasmError as e:
+            logger.error(exit_message(e))
+            return 1
+        return 0
+
+    def _prepare_source(self, pkg, args, plan):
+        """Point the build at a patched copy when the recipe has patches."""
+        version = pkg.metadata.get('version')
+        patches = [p.file for p in plan.rule.patches
+                   if p.applies_to(version)]
+        if not patches:
+            return
+        self.progress('patch')
+        source = prepare_patched_source(
+            Path(args.path), patched_source_folder(args.build_base, pkg.name),
+            patches, package=pkg.name)
+        logger.info(
+            f"Building '{pkg.name}' from the patched copy '{source}' ("
+            + ', '.join(p.name for p in patches) + ')')
+        args.path = str(source)
+
+    def _clean_cache_on_new_settings(self, args, plan):
+        """
+        Configure from scratch when Emscripten or the flags changed.
+
+        The toolchain's flags initialize CMake's cached flags on the first
+        configure only, so a changed setting needs a fresh CMake cache.
+        """
+        settings = {
+            'emscripten': plan.emscripten.describe(),
+            'flags': plan.settings.describe([]),
+        }
+        path = Path(args.build_base) / SETTINGS_FILE
+        previous = None
+        if path.is_file():
+            try:
+                previous = json.loads(path.read_text())
+            except ValueError:
+                previous = None
+        if previous != settings:
+            if previous is not None:
+                logger.info(
+                    f"Toolchain settings of '{self.context.pkg.name}' changed"
+                    ': configuring from a fresh CMake cache')
+            args.cmake_clean_cache = True
+            path.parent.mkdir(parents=True, exist_ok=True)
+            path.write_text(json.dumps(settings, indent=2) + '\n')
+
+    def _install_base(self, args):
+        """Get the install base shared by all packages."""
+        if args.merge_install:
+            return args.install_base
+        return str(Path(args.install_base).parent)

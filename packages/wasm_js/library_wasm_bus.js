@@ -1,0 +1,470 @@
+// Copyright 2026 The colcon-wasm authors. Licensed under the Apache License 2.0.
+//
+// Emscripten JS library (--js-library) that connects wasm_cpp to the wasm_js
+// bus. Every executable linking wasm_cpp::wasm_cpp gets it through the
+// target's link options.
+//
+// Each thread of the executable has its own BusClient (src/bus_client.mjs):
+// - the main runtime thread uses the one the wasm_js host puts in
+//   Module.wasmBus = {client, moduleUrl}; when the executable runs alone
+//   (`node exe.js`), it imports bus_client.mjs and creates a private bus;
+// - each pthread worker gets {cmd: 'wasmBus', sab, pid, moduleUrl} right
+//   after Emscripten's 'load' message, imports bus_client.mjs and attaches;
+//   a run dependency holds the worker's 'loaded' reply until it has.
+// So no glue post-processing is needed for the bus to reach pthreads.
+//
+// Functions return wasm_cpp::Code values (0 = ok); the message of the last
+// failure of the calling thread is read with wasm_bus_last_error().
+
+var LibraryWasmBus = {
+  // addRunDependency / removeRunDependency come from the preamble (always present).
+  $WasmBus__postset: 'WasmBus.init();',
+#if USE_PTHREADS
+  $WasmBus__deps: ['$ENV', 'emscripten_main_thread_process_queued_calls'],
+#else
+  $WasmBus__deps: ['$ENV'],
+#endif
+  $WasmBus: {
+    client: null,
+    moduleUrl: null,
+    error: '',
+    pending: [],
+    // Unused since the wait loop services the main thread's call queue itself
+    // (BusClient.service); kept false so waits never return -1.
+    returnAfterWake: false,
+
+    fail: function(e) {
+      WasmBus.error = (e && e.message) ? e.message : String(e);
+      return (e && typeof e.code == 'number' && e.code > 0) ? e.code : 1;
+    },
+
+    noBus: function() {
+      WasmBus.error = WasmBus.error ||
+        'wasm_cpp: no bus is attached to this executable: run it with the wasm_js runtime ' +
+        '(Runtime.spawn, or `node <wasm_js>/src/cli.mjs exe.js`), or make share/wasm_js findable ' +
+        '(WASM_JS_DIR or AMENT_PREFIX_PATH) when running it alone';
+      return 1;
+    },
+
+    // Install the BusClient of the main runtime thread.
+    setClient: function(client, moduleUrl) {
+      WasmBus.client = client;
+      WasmBus.moduleUrl = moduleUrl;
+#if USE_PTHREADS
+      // Waits on this thread run the calls pthreads proxy to it (printf, ...).
+      client.service = function() { _emscripten_main_thread_process_queued_calls(); };
+#endif
+      WasmBus.ready();
+    },
+
+    whenReady: function(fn) {
+      if (WasmBus.client) fn(); else WasmBus.pending.push(fn);
+    },
+
+    ready: function() {
+      var p = WasmBus.pending;
+      WasmBus.pending = [];
+      p.forEach(function(fn) { fn(); });
+    },
+
+#if ENVIRONMENT_MAY_BE_NODE
+    // Where is bus_client.mjs when the executable runs alone under Node.js?
+    locateModule: function() {
+      var path = require('path');
+      var fs = require('fs');
+      var dirs = [];
+      if (process.env['WASM_JS_DIR']) dirs.push(process.env['WASM_JS_DIR']);
+      ['AMENT_PREFIX_PATH', 'CMAKE_PREFIX_PATH', 'COLCON_PREFIX_PATH'].forEach(function(v) {
+        (process.env[v] || '').split(path.delimiter).forEach(function(p) {
+          if (p) dirs.push(path.join(p, 'share', 'wasm_js'), path.join(p, 'wasm_js', 'share', 'wasm_js'));
+        });
+      });
+      var here = typeof __dirname != 'undefined' ? __dirname : process.cwd();
+      for (var up = 1; up <= 4; up++) {
+        var base = path.resolve(here, new Array(up + 1).join('../'));
+        dirs.push(path.join(base, 'share', 'wasm_js'), path.join(base, 'wasm_js', 'share', 'wasm_js'));
+      }
+      for (var i = 0; i < dirs.length; i++) {
+        var f = path.join(dirs[i], 'src', 'bus_client.mjs');
+        if (fs.existsSync(f)) return require('url').pathToFileURL(f).href;
+      }
+      return null;
+    },
+#endif
+
+    init: function() {
+#if USE_PTHREADS
+      if (ENVIRONMENT_IS_PTHREAD) {
+        // Hold 'loaded' until the main thread sent us the bus and we attached.
+        addRunDependency('wasm-bus');
+        var onmessage = self.onmessage;
+        self.onmessage = function(e) {
+          var d = e && e.data;
+          if (d && d['cmd'] === 'wasmBus') {
+            WasmBus.moduleUrl = d['moduleUrl'];
+            import(d['moduleUrl']).then(function(m) {
+              WasmBus.client = m.BusClient.attach(d['sab'], d['pid']);
+            }).catch(function(err) {
+              WasmBus.error = 'wasm_cpp: a thread could not attach to the bus (' + d['moduleUrl'] + '): ' + err;
+            }).then(function() {
+              removeRunDependency('wasm-bus');
+            });
+            return;
+          }
+          return onmessage(e);
+        };
+        return;
+      }
+      // Give every pthread worker the bus right after Emscripten loads it.
+      var load = PThread.loadWasmModuleToWorker;
+      PThread.loadWasmModuleToWorker = function(worker) {
+        var r = load.apply(this, arguments);
+        WasmBus.whenReady(function() {
+          worker.postMessage({
+            'cmd': 'wasmBus', 'sab': WasmBus.client.bus.sab, 'pid': WasmBus.client.pid,
+            'moduleUrl': WasmBus.moduleUrl,
+          });
+        });
+        return r;
+      };
+#endif
+      // The environment the host gives (Module.env; colcon-wasm's glue start-up
+      // fragment does the same for executables that do not link wasm_cpp).
+      if (Module['env'] && typeof ENV == 'object') {
+        for (var k in Module['env']) ENV[k] = String(Module['env'][k]);
+      }
+      var given = Module['wasmBus'];
+      if (given && given['client']) {
+        WasmBus.setClient(given['client'], given['moduleUrl']);
+        return;
+      }
+#if ENVIRONMENT_MAY_BE_NODE
+      if (ENVIRONMENT_IS_NODE) {
+        var url = WasmBus.locateModule();
+        if (!url) {
+          WasmBus.noBus();
+          return;
+        }
+        addRunDependency('wasm-bus');
+        import(url).then(function(m) {
+          WasmBus.setClient(m.BusClient.createPrivate(), url);
+        }).catch(function(err) {
+          WasmBus.error = 'wasm_cpp: cannot create a private bus from ' + url + ': ' + err;
+        }).then(function() {
+          removeRunDependency('wasm-bus');
+        });
+      }
+#endif
+    },
+  },
+
+  wasm_bus_attached__deps: ['$WasmBus'],
+  wasm_bus_attached: function() {
+    return WasmBus.client ? 1 : 0;
+  },
+
+  wasm_bus_last_error__deps: ['$WasmBus'],
+  wasm_bus_last_error: function(buf, cap) {
+    var msg = WasmBus.error || '';
+    if (buf && cap > 0) stringToUTF8(msg, buf, cap);
+    return lengthBytesUTF8(msg);
+  },
+
+  wasm_bus_process_id__deps: ['$WasmBus'],
+  wasm_bus_process_id: function() {
+    return WasmBus.client ? WasmBus.client.pid : 0;
+  },
+
+  wasm_bus_max_message__deps: ['$WasmBus'],
+  wasm_bus_max_message: function() {
+    return WasmBus.client ? WasmBus.client.maxMessageBytes : 0;
+  },
+
+  wasm_bus_context_create__deps: ['$WasmBus'],
+  wasm_bus_context_create: function() {
+    if (!WasmBus.client) return -WasmBus.noBus();
+    return WasmBus.client.createContext();
+  },
+
+  // out: [index, gid0, gid1, gid2, gid3, name_taken]
+  wasm_bus_node_create__deps: ['$WasmBus'],
+  wasm_bus_node_create: function(domain, context, name, ns, enclave, out) {
+    if (!WasmBus.client) return WasmBus.noBus();
+    try {
+      var r = WasmBus.client.createNode({
+        domain: domain, context: context, name: UTF8ToString(name), namespace: UTF8ToString(ns),
+        enclave: UTF8ToString(enclave),
+      });
+      HEAP32[out >> 2] = r.index;
+      HEAP32.set(r.gid, (out >> 2) + 1);
+      HEAP32[(out >> 2) + 5] = r.nameTaken ? 1 : 0;
+      return 0;
+    } catch (e) {
+      return WasmBus.fail(e);
+    }
+  },
+
+  wasm_bus_node_destroy__deps: ['$WasmBus'],
+  wasm_bus_node_destroy: function(node) {
+    if (!WasmBus.client) return WasmBus.noBus();
+    try {
+      WasmBus.client.destroyNode(node);
+      return 0;
+    } catch (e) {
+      return WasmBus.fail(e);
+    }
+  },
+
+  // qos: 12 words (wasm_bus_qos), resolved in place; out: [index, gid0..gid3]
+  wasm_bus_endpoint_create__deps: ['$WasmBus'],
+  wasm_bus_endpoint_create: function(kind, node, name, type, qos, flags, keepAllDepth, out) {
+    if (!WasmBus.client) return WasmBus.noBus();
+    try {
+      var r = WasmBus.client.createEndpoint({
+        kind: kind, node: node, name: UTF8ToString(name), type: UTF8ToString(type),
+        qos: HEAP32.slice(qos >> 2, (qos >> 2) + 12), ignoreLocal: (flags & 1) != 0,
+        keepAllDepth: keepAllDepth,
+      });
+      HEAP32.set(r.qos, qos >> 2);
+      HEAP32[out >> 2] = r.index;
+      HEAP32.set(r.gid, (out >> 2) + 1);
+      return 0;
+    } catch (e) {
+      return WasmBus.fail(e);
+    }
+  },
+
+  wasm_bus_endpoint_destroy__deps: ['$WasmBus'],
+  wasm_bus_endpoint_destroy: function(ep) {
+    if (!WasmBus.client) return WasmBus.noBus();
+    try {
+      WasmBus.client.destroyEndpoint(ep);
+      return 0;
+    } catch (e) {
+      return WasmBus.fail(e);
+    }
+  },
+
+  // seq: [lo, hi] of the message's sequence number
+  wasm_bus_publish__deps: ['$WasmBus'],
+  wasm_bus_publish: function(ep, data, len, timeoutMs, seq) {
+    try {
+      var s = WasmBus.client.publish(ep, HEAPU8.subarray(data, data + len), timeoutMs);
+      if (seq) {
+        HEAPU32[seq >> 2] = s % 4294967296;
+        HEAPU32[(seq >> 2) + 1] = Math.floor(s / 4294967296);
+      }
+      return 0;
+    } catch (e) {
+      return WasmBus.fail(e);
+    }
+  },
+
+  // gid: 4 words of the request id's client gid; returns 0 also when the client is gone.
+  wasm_bus_send_response__deps: ['$WasmBus'],
+  wasm_bus_send_response: function(ep, gid, seqLo, seqHi, data, len, timeoutMs) {
+    try {
+      WasmBus.client.sendResponse(ep, HEAP32.subarray(gid >> 2, (gid >> 2) + 4), seqLo, seqHi,
+                                  HEAPU8.subarray(data, data + len), timeoutMs);
+      return 0;
+    } catch (e) {
+      return WasmBus.fail(e);
+    }
+  },
+
+  // Returns 1 when taken, 0 when nothing is there, -code on failure.
+  // info (wasm_bus_take_info): f64 source ms, f64 received ms, u32 pub seq lo/hi,
+  // u32 reception seq lo/hi, i32 gid[4], u32 request seq lo/hi, i32 same process,
+  // i32 length, i32 data pointer.
+  wasm_bus_take__deps: ['$WasmBus'],
+  wasm_bus_take: function(ep, mode, allocFn, deallocFn, state, info) {
+    try {
+      var c = WasmBus.client;
+      for (;;) {
+        var len = c.takeBegin(ep, mode);
+        if (len < 0) return 0;
+        var ptr = wasmTable.get(allocFn)(len > 0 ? len : 1, state);
+        if (!ptr) {
+          WasmBus.error = 'take on \'' + c.endpointName(ep) + '\' failed: the allocator returned null for ' + len + ' bytes';
+          return -10;
+        }
+        if (c.takeCopy(HEAPU8, ptr)) {
+          var i = c.info;
+          var w = info >> 2;
+          HEAPF64[info >> 3] = i.sourceTime;
+          HEAPF64[(info >> 3) + 1] = i.receivedTime;
+          HEAP32[w + 4] = i.pubSeqLo;
+          HEAP32[w + 5] = i.pubSeqHi;
+          HEAP32[w + 6] = i.recvSeqLo;
+          HEAP32[w + 7] = i.recvSeqHi;
+          HEAP32.set(i.gid, w + 8);
+          HEAP32[w + 12] = i.reqLo;
+          HEAP32[w + 13] = i.reqHi;
+          HEAP32[w + 14] = i.sameProcess ? 1 : 0;
+          HEAP32[w + 15] = len;
+          HEAP32[w + 16] = ptr;
+          return 1;
+        }
+        wasmTable.get(deallocFn)(ptr, state);
+      }
+    } catch (e) {
+      return -WasmBus.fail(e);
+    }
+  },
+
+  wasm_bus_has_data__deps: ['$WasmBus'],
+  wasm_bus_has_data: function(ep, mode) {
+    try {
+      return WasmBus.client.takeBegin(ep, mode) >= 0 ? 1 : 0;
+    } catch (e) {
+      WasmBus.fail(e);
+      return 0;
+    }
+  },
+
+  wasm_bus_matched_count__deps: ['$WasmBus'],
+  wasm_bus_matched_count: function(ep) {
+    try {
+      return WasmBus.client.matchedCount(ep);
+    } catch (e) {
+      return -WasmBus.fail(e);
+    }
+  },
+
+  wasm_bus_assert_liveliness__deps: ['$WasmBus'],
+  wasm_bus_assert_liveliness: function(ep) {
+    try {
+      WasmBus.client.assertLiveliness(ep);
+      return 0;
+    } catch (e) {
+      return WasmBus.fail(e);
+    }
+  },
+
+  wasm_bus_wait_for_acked__deps: ['$WasmBus'],
+  wasm_bus_wait_for_acked: function(ep, timeoutMs) {
+    try {
+      return WasmBus.client.waitForAllAcked(ep, timeoutMs) ? 0 : 2;
+    } catch (e) {
+      return WasmBus.fail(e);
+    }
+  },
+
+  // items: 4 words per item (kind, handle, aux, result). Returns the number of
+  // ready items, 0 on timeout, -1 when woken and the caller must call again
+  // (main thread of a pthread program), or -100 - code on failure.
+  wasm_bus_wait__deps: ['$WasmBus'],
+  wasm_bus_wait: function(items, count, timeoutMs) {
+    try {
+      var heap = HEAP32;
+      return WasmBus.client.wait(heap, items >> 2, count, timeoutMs, heap, WasmBus.returnAfterWake);
+    } catch (e) {
+      return -100 - WasmBus.fail(e);
+    }
+  },
+
+  // Like wasm_bus_wait, but result = number of new arrivals (nothing is taken).
+  wasm_bus_listen__deps: ['$WasmBus'],
+  wasm_bus_listen: function(items, count, timeoutMs) {
+    try {
+      var heap = HEAP32;
+      return WasmBus.client.listen(heap, items >> 2, count, timeoutMs, WasmBus.returnAfterWake);
+    } catch (e) {
+      return -100 - WasmBus.fail(e);
+    }
+  },
+
+  wasm_bus_listen_forget__deps: ['$WasmBus'],
+  wasm_bus_listen_forget: function(ep) {
+    if (WasmBus.client) WasmBus.client.listenForget(ep);
+  },
+
+  // status: [changed, total, change, alive, not_alive, alive_change, not_alive_change, policy]
+  wasm_bus_event_status__deps: ['$WasmBus'],
+  wasm_bus_event_status: function(ep, type, take, status) {
+    try {
+      var s = WasmBus.client.eventStatus(ep, type, take != 0);
+      var w = status >> 2;
+      HEAP32[w] = s.changed ? 1 : 0;
+      HEAP32[w + 1] = s.total;
+      HEAP32[w + 2] = s.change;
+      HEAP32[w + 3] = s.alive;
+      HEAP32[w + 4] = s.notAlive;
+      HEAP32[w + 5] = s.aliveChange;
+      HEAP32[w + 6] = s.notAliveChange;
+      HEAP32[w + 7] = s.policy;
+      return 0;
+    } catch (e) {
+      return WasmBus.fail(e);
+    }
+  },
+
+  wasm_bus_ring_self__deps: ['$WasmBus'],
+  wasm_bus_ring_self: function() {
+    if (WasmBus.client) WasmBus.client.ringSelf();
+  },
+
+  wasm_bus_graph_version__deps: ['$WasmBus'],
+  wasm_bus_graph_version: function() {
+    return WasmBus.client ? WasmBus.client.graphVersion() : 0;
+  },
+
+  // Serialize the graph of one domain into a malloc'd buffer (*out, *outLen):
+  // u32 node count, per node: str name, str namespace, str enclave, i32 gid[4];
+  // u32 endpoint count, per endpoint: i32 kind, str name, str type, str node
+  // name, str node namespace, i32 gid[4], i32 qos[12]. str = u32 length + UTF-8.
+  wasm_bus_graph__deps: ['$WasmBus', 'malloc'],
+  wasm_bus_graph: function(domain, out, outLen) {
+    try {
+      var g = WasmBus.client.graph({ domain: domain });
+      var enc = new TextEncoder();
+      var parts = [];
+      var size = 0;
+      function u32(v) { var a = new Int32Array([v]); parts.push(new Uint8Array(a.buffer)); size += 4; }
+      function words(w) { var a = Int32Array.from(w); parts.push(new Uint8Array(a.buffer)); size += a.length * 4; }
+      function str(s) { var b = enc.encode(s); u32(b.length); parts.push(b); size += b.length; }
+      u32(g.nodes.length);
+      g.nodes.forEach(function(n) { str(n.name); str(n.namespace); str(n.enclave); words(n.gid); });
+      u32(g.endpoints.length);
+      g.endpoints.forEach(function(e) {
+        u32(e.kind); str(e.name); str(e.type); str(e.node); str(e.namespace); words(e.gid); words(e.qosWords);
+      });
+      var ptr = _malloc(size > 0 ? size : 1);
+      if (!ptr) {
+        WasmBus.error = 'graph query failed: out of memory for ' + size + ' bytes';
+        return 10;
+      }
+      var p = ptr;
+      parts.forEach(function(b) { HEAPU8.set(b, p); p += b.length; });
+      HEAP32[out >> 2] = ptr;
+      HEAP32[outLen >> 2] = size;
+      return 0;
+    } catch (e) {
+      return WasmBus.fail(e);
+    }
+  },
+};
+
+#if USE_PTHREADS
+// A pthread that proxies a call to the main thread (e.g. its printf) rings the
+// process' doorbell, so a main thread sleeping in a bus wait wakes up, runs
+// the call and goes back to sleep (see wasm_bus_wait's -1 result).
+(function() {
+  var lib = LibraryManager.library;
+  var name = '_emscripten_notify_thread_queue';
+  if (typeof lib[name] !== 'function') return;
+  var orig = name + '_wasm_bus_orig';
+  lib[orig] = lib[name];
+  if (lib[name + '__deps']) lib[orig + '__deps'] = lib[name + '__deps'];
+  if (lib[name + '__sig']) lib[orig + '__sig'] = lib[name + '__sig'];
+  lib[name + '__deps'] = [orig, '$WasmBus'];
+  LibraryWasmBus[name + '__deps'] = lib[name + '__deps'];
+  LibraryWasmBus[name] = function(targetThreadId, mainThreadId) {
+    var r = __emscripten_notify_thread_queue_wasm_bus_orig(targetThreadId, mainThreadId);
+    if (targetThreadId == mainThreadId && WasmBus.client) WasmBus.client.ringSelf();
+    return r;
+  };
+})();
+#endif
+
+mergeInto(LibraryManager.library, LibraryWasmBus);

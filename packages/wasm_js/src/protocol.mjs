@@ -1,0 +1,39 @@
+// Copyright 2026 The colcon-wasm authors. Licensed under the Apache License 2.0.
+
+/**
+ * Messages between the Runtime (page or Node.js main thread) and its workers.
+ * Wire format only: no logic.
+ *
+ * @module protocol
+ */
+
+/** Runtime -> host worker. */
+export const ToHost = Object.freeze({
+  /** {type, bus, pid, url, wasmUrl, args, env, name, wasmModule, busModuleUrl, hostModuleUrl} */
+  START: 'start',
+});
+
+/** Host worker -> Runtime. */
+export const FromHost = Object.freeze({
+  /** {type, stream: 'stdout'|'stderr', text} one line */
+  LOG: 'log',
+  /** {type} the glue is loaded and main() is about to run */
+  STARTED: 'started',
+  /** {type, code, crashed, reason} */
+  EXIT: 'exit',
+});
+
+/** Runtime <-> tools worker (request/response, comlink style). */
+export const ToTools = Object.freeze({
+  /** {type, bus, pid} */
+  INIT: 'init',
+  /** {type, id, method, args} */
+  CALL: 'call',
+});
+
+export const FromTools = Object.freeze({
+  /** {type, id, ok: true, value} or {type, id, ok: false, error: {name, message, code, stack}} */
+  RETURN: 'return',
+  /** {type, subscription, messages: [{data: Uint8Array, info}]} */
+  BATCH: 'batch',
+});

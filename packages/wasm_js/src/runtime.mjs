@@ -1,0 +1,371 @@
+// Copyright 2026 The colcon-wasm authors. Licensed under the Apache License 2.0.
+
+/**
+ * The Runtime: owns the bus of a page (or Node.js process), hosts each node
+ * executable in its own worker, reports logs and exits, cleans up after dead
+ * nodes and tells the page about graph changes. Runs on the main thread and
+ * never blocks it.
+ *
+ * @module runtime
+ */
+
+import { Bus, BusError, Code } from './bus.mjs';
+import { H, P, PROC_KIND_NODE, PROC_KIND_RUNTIME, PROC_KIND_TOOLS } from './layout.mjs';
+import { HostWorker, compileWasm, isNode, resolveUrl, siblingUrl } from './platform.mjs';
+import { FromHost, ToHost } from './protocol.mjs';
+import { Tools } from './tools.mjs';
+
+/** Thrown by Runtime.create() when shared memory is unavailable (page not cross-origin isolated). */
+export class IsolationError extends Error {
+  constructor(message) {
+    super(message);
+    this.name = 'IsolationError';
+  }
+}
+
+const ISOLATION_HELP =
+  'This page is not cross-origin isolated, so SharedArrayBuffer is not available and ROS nodes ' +
+  'cannot run here. Serve the page with the HTTP headers ' +
+  '"Cross-Origin-Opener-Policy: same-origin" and "Cross-Origin-Embedder-Policy: require-corp" ' +
+  '(`colcon-wasm serve` does), and load it over http://localhost or https.';
+
+const SEVERITY_RE = /^\[(DEBUG|INFO|WARN|ERROR|FATAL)\]/;
+
+/**
+ * Parse the severity of a log line: the ROS tag when there is one
+ * (`[INFO] [1700000000.123456789] [talker]: ...`), else INFO for stdout and
+ * ERROR for stderr.
+ * @param {string} stream
+ * @param {string} text
+ */
+export function severityOf(stream, text) {
+  const m = SEVERITY_RE.exec(text);
+  if (m) return m[1];
+  return stream === 'stderr' ? 'ERROR' : 'INFO';
+}
+
+function gidHex(words) {
+  return Array.from(new Uint8Array(Int32Array.from(words).buffer), (b) => b.toString(16).padStart(2, '0')).join('');
+}
+
+/**
+ * One running executable (a bus process).
+ */
+export class NodeProcess {
+  constructor(runtime, pid, name, worker, options) {
+    /** Bus process id. */
+    this.id = pid;
+    /** Name given to spawn() (or the executable's base name). */
+    this.name = name;
+    /** performance.now() when spawn() created the worker. */
+    this.spawnedAt = options.spawnedAt;
+    /** performance.now() when the glue was loaded (main() about to run). */
+    this.startedAt = null;
+    this._runtime = runtime;
+    this._worker = worker;
+    this._options = options;
+    this._done = false;
+    /** Resolves with {code, crashed, reason} when the process has ended and left the graph. */
+    this.exited = new Promise((resolve) => { this._resolve = resolve; });
+  }
+
+  _onMessage(m) {
+    if (!m || typeof m !== 'object') return;
+    if (m.type === FromHost.LOG) {
+      const onLog = this._options.onLog;
+      if (onLog) {
+        try {
+          onLog({ stream: m.stream, severity: severityOf(m.stream, m.text), text: m.text, name: this.name, pid: this.id });
+        } catch (e) {
+          console.error(`onLog of '${this.name}' threw:`, e);
+        }
+      }
+    } else if (m.type === FromHost.STARTED) {
+      this.startedAt = performance.now();
+    } else if (m.type === FromHost.EXIT) {
+      this._finish({ code: m.code, crashed: !!m.crashed, reason: m.reason || '' });
+    }
+  }
+
+  async _finish(result) {
+    if (this._done) return;
+    this._done = true;
+    try {
+      await this._worker.terminate();
+    } catch (e) {
+      // Already gone.
+    }
+    await this._runtime._reap(this.id, this);
+    if (this._options.onExit) {
+      try {
+        this._options.onExit(result);
+      } catch (e) {
+        console.error(`onExit of '${this.name}' threw:`, e);
+      }
+    }
+    this._resolve(result);
+  }
+
+  /**
+   * Terminate the process now; its nodes and endpoints leave the graph.
+   * @returns {Promise<{code: number|null, crashed: boolean, reason: string}>}
+   */
+  stop() {
+    this._finish({ code: null, crashed: false, reason: 'stopped' });
+    return this.exited;
+  }
+}
+
+/**
+ * The middleware runtime of one page or Node.js process.
+ */
+export class Runtime {
+  /**
+   * Create the bus and the runtime.
+   * @param {object} [options]
+   * @param {number} [options.maxMessageBytes=64 MiB] largest message
+   * @param {number} [options.maxBytes=1 GiB] largest bus size (it grows on demand)
+   * @param {number} [options.initialBytes=16 MiB]
+   * @param {number} [options.maxProcesses] @param {number} [options.maxNodes]
+   * @param {number} [options.maxEndpoints] @param {number} [options.maxLinks]
+   * @returns {Promise<Runtime>}
+   * @throws {IsolationError} when the page is not cross-origin isolated
+   */
+  static async create(options = {}) {
+    if (typeof SharedArrayBuffer === 'undefined' || globalThis.crossOriginIsolated === false) {
+      throw new IsolationError(ISOLATION_HELP);
+    }
+    if (typeof Atomics.waitAsync !== 'function') {
+      throw new BusError(Code.UNSUPPORTED,
+        'this JavaScript engine lacks Atomics.waitAsync, which the runtime needs to watch the bus without blocking the page (use Chromium >= 87 or Node.js >= 16)');
+    }
+    const bus = Bus.create(options);
+    if (!bus.tryLock(1)) throw new BusError(Code.ERROR, 'a new bus is already locked');
+    const pid = bus.allocProcess(PROC_KIND_RUNTIME);
+    bus.unlock(1);
+    return new Runtime(bus, pid);
+  }
+
+  constructor(bus, pid) {
+    /** The bus (its SharedArrayBuffer is `bus.sab`). */
+    this.bus = bus;
+    /** This runtime's own process id (owner of its registry mutations). */
+    this.pid = pid;
+    /** @type {Map<number, NodeProcess>} */
+    this.processes = new Map();
+    this._modules = new Map();
+    this._graphListeners = new Set();
+    this._watching = false;
+    this._closed = false;
+    this._tools = null;
+  }
+
+  async _allocPid(kind) {
+    await this.bus.lockAsync(this.pid);
+    let pid;
+    try {
+      pid = this.bus.allocProcess(kind);
+    } finally {
+      this.bus.unlock(this.pid);
+    }
+    if (!pid) {
+      throw new BusError(Code.BAD_ALLOC, `cannot start another node: the bus process table is full (${this.bus.procCap}); create the Runtime with a larger maxProcesses`);
+    }
+    return pid;
+  }
+
+  /** Compile (once) the .wasm of an executable. */
+  compiledModule(wasmUrl) {
+    let p = this._modules.get(wasmUrl);
+    if (!p) {
+      p = compileWasm(wasmUrl);
+      p.catch(() => this._modules.delete(wasmUrl));
+      this._modules.set(wasmUrl, p);
+    }
+    return p;
+  }
+
+  /**
+   * Start an executable as a new bus process.
+   * @param {object} spec
+   * @param {string|URL} spec.url the executable's .js glue (URL, or file path in Node.js)
+   * @param {string[]} [spec.args] command-line arguments (argv[1..])
+   * @param {Object<string, string>} [spec.env] environment variables
+   * @param {string} [spec.name] a name for logs (default: the file's base name)
+   * @param {function({stream: string, severity: string, text: string, name: string, pid: number}): void} [spec.onLog]
+   * @param {function({code: number|null, crashed: boolean, reason: string}): void} [spec.onExit]
+   * @param {WebAssembly.Module} [spec.wasmModule] an already compiled module
+   * @param {boolean} [spec.shareModule=true] compile the .wasm once and share it between spawns
+   * @returns {Promise<NodeProcess>}
+   */
+  async spawn(spec) {
+    if (this._closed) throw new BusError(Code.ERROR, 'spawn: the runtime is closed');
+    if (!spec || !spec.url) throw new BusError(Code.INVALID_ARGUMENT, 'spawn: missing url of the executable (.js)');
+    const spawnedAt = performance.now();
+    const url = await resolveUrl(spec.url);
+    const path = new URL(url).pathname;
+    const glueFile = path.slice(path.lastIndexOf('/') + 1);
+    if (!glueFile.endsWith('.js')) {
+      throw new BusError(Code.INVALID_ARGUMENT, `spawn: '${spec.url}' is not an Emscripten executable (.js)`);
+    }
+    const wasmUrl = new URL(glueFile.replace(/\.js$/, '.wasm'), url).href;
+    const name = spec.name || glueFile.replace(/\.js$/, '');
+    const args = (spec.args || []).map(String);
+    const env = {};
+    for (const [k, v] of Object.entries(spec.env || {})) env[k] = String(v);
+    let wasmModule = spec.wasmModule || null;
+    if (!wasmModule && spec.shareModule !== false) {
+      try {
+        wasmModule = await this.compiledModule(wasmUrl);
+      } catch (e) {
+        throw new BusError(Code.ERROR, `spawn '${name}': cannot compile ${wasmUrl}: ${e.message}`);
+      }
+    }
+    const pid = await this._allocPid(PROC_KIND_NODE);
+    let worker;
+    try {
+      worker = await HostWorker.start(
+        isNode ? siblingUrl('node_host.mjs') : siblingUrl('web_host.js'), { name, type: 'classic' });
+    } catch (e) {
+      await this._reap(pid, null);
+      throw new BusError(Code.ERROR, `spawn '${name}': cannot start a worker: ${e.message}`);
+    }
+    const proc = new NodeProcess(this, pid, name, worker, { ...spec, spawnedAt });
+    this.processes.set(pid, proc);
+    worker.on('message', (m) => proc._onMessage(m));
+    worker.on('error', (e) => {
+      const where = e.filename ? ` (${e.filename}:${e.lineno})` : '';
+      proc._finish({ code: 1, crashed: true, reason: `uncaught error: ${e.message}${where}` });
+    });
+    worker.on('exit', ({ code }) => {
+      proc._finish({ code, crashed: code !== 0, reason: code !== 0 ? `worker exited with code ${code}` : '' });
+    });
+    worker.postMessage({
+      type: ToHost.START, bus: this.bus.sab, pid, url, wasmUrl, glueFile, args, env, name, wasmModule,
+      busModuleUrl: siblingUrl('bus_client.mjs'), hostModuleUrl: siblingUrl('host_common.mjs'),
+    });
+    return proc;
+  }
+
+  /** Remove a dead process from the bus without blocking (main thread). */
+  async _reap(pid, proc) {
+    const bus = this.bus;
+    Atomics.store(bus.i32, bus.proc(pid) + P.STATE, 2);
+    bus.ringAll();
+    await bus.lockAsync(this.pid);
+    try {
+      bus.cleanupProcess(pid);
+      bus.releaseProcess(pid);
+      bus.bumpGraph();
+    } finally {
+      bus.unlock(this.pid);
+    }
+    bus.ringAll();
+    if (proc && this.processes.get(pid) === proc) this.processes.delete(pid);
+  }
+
+  /**
+   * A snapshot of the graph: nodes, topics and services (with types and
+   * endpoints with QoS and gids), per domain.
+   */
+  graph() {
+    const snap = this.bus.snapshot();
+    const procName = (pid) => (this.processes.get(pid) || {}).name || (this._tools && this._tools.pid === pid ? 'tools' : '');
+    const nodes = snap.nodes.map((n) => ({
+      name: n.name, namespace: n.namespace, enclave: n.enclave, domain: n.domain, pid: n.pid,
+      process: procName(n.pid), gid: gidHex(n.gid),
+    }));
+    const topics = new Map();
+    const services = new Map();
+    for (const e of snap.endpoints) {
+      const isTopic = e.kind === 1 || e.kind === 2;
+      const map = isTopic ? topics : services;
+      const key = `${e.domain}\u0000${e.name}`;
+      let entry = map.get(key);
+      if (!entry) {
+        entry = isTopic
+          ? { name: e.name, domain: e.domain, types: [], publishers: [], subscriptions: [] }
+          : { name: e.name, domain: e.domain, types: [], servers: [], clients: [] };
+        map.set(key, entry);
+      }
+      if (!entry.types.includes(e.type)) entry.types.push(e.type);
+      const ep = { node: e.node, namespace: e.namespace, type: e.type, gid: gidHex(e.gid), qos: e.qos, pid: e.pid };
+      ({ 1: entry.publishers, 2: entry.subscriptions, 3: entry.servers, 4: entry.clients })[e.kind].push(ep);
+    }
+    const byName = (a, b) => (a.name < b.name ? -1 : a.name > b.name ? 1 : a.domain - b.domain);
+    return {
+      version: snap.version,
+      nodes: nodes.sort((a, b) => (a.namespace + a.name < b.namespace + b.name ? -1 : 1)),
+      topics: [...topics.values()].sort(byName),
+      services: [...services.values()].sort(byName),
+    };
+  }
+
+  /**
+   * Call `callback(graph)` after graph changes (coalesced). Never blocks.
+   * @param {function(object): void} callback
+   * @returns {function(): void} unsubscribe
+   */
+  onGraphChange(callback) {
+    this._graphListeners.add(callback);
+    this._watchGraph();
+    return () => this._graphListeners.delete(callback);
+  }
+
+  _watchGraph() {
+    if (this._watching) return;
+    this._watching = true;
+    let seen = this.bus.graphVersion();
+    const loop = () => {
+      if (this._closed || this._graphListeners.size === 0) {
+        this._watching = false;
+        return;
+      }
+      const v = this.bus.graphVersion();
+      if (v !== seen) {
+        seen = v;
+        const g = this.graph();
+        for (const cb of [...this._graphListeners]) {
+          try {
+            cb(g);
+          } catch (e) {
+            console.error('onGraphChange callback threw:', e);
+          }
+        }
+      }
+      const r = Atomics.waitAsync(this.bus.i32, H.GRAPH_VERSION, v);
+      if (r.async) r.value.then(loop);
+      else Promise.resolve().then(loop);
+    };
+    loop();
+  }
+
+  /**
+   * A JS-only bus process in a worker, for tools (echo, publish, service calls).
+   * @returns {Promise<Tools>}
+   */
+  async tools() {
+    if (!this._tools) {
+      this._tools = (async () => {
+        const pid = await this._allocPid(PROC_KIND_TOOLS);
+        return Tools.start(this, pid);
+      })();
+    }
+    return this._tools;
+  }
+
+  /** Stop every process and the tools worker. */
+  async close() {
+    if (this._closed) return;
+    await Promise.all([...this.processes.values()].map((p) => p.stop()));
+    if (this._tools) {
+      const tools = await this._tools;
+      await tools.close();
+    }
+    this._closed = true;
+    Atomics.add(this.bus.i32, H.GRAPH_VERSION, 1);
+    Atomics.notify(this.bus.i32, H.GRAPH_VERSION);
+  }
+}
+
+export { PROC_KIND_TOOLS };

@@ -1,0 +1,156 @@
+// Copyright 2026 The colcon-wasm authors. Licensed under the Apache License 2.0.
+
+/**
+ * The tools worker: a JS-only bus process. It never blocks in a wait (it
+ * must keep receiving calls): it sleeps with Atomics.waitAsync on its
+ * doorbell and, on each wake-up, drains its subscriptions into one batch per
+ * subscription and completes pending service calls.
+ *
+ * @module tools_worker
+ */
+
+import { BusClient, KIND_CLIENT, KIND_PUBLISHER, KIND_SUBSCRIPTION, TakeMode } from './bus_client.mjs';
+import { FromTools, ToTools } from './protocol.mjs';
+
+let client = null;
+const subscriptions = new Set();
+const publishers = new Map();
+/** service name key -> client endpoint */
+const clientByKey = new Map();
+/** client endpoint -> Map(sequence number -> pending call) */
+const clients = new Map();
+let armed = false;
+
+const post = (m, transfer) => (typeof self !== 'undefined' && self.postMessage
+  ? self.postMessage(m, transfer || [])
+  : port.postMessage(m, transfer || []));
+
+let port = null;
+if (typeof self === 'undefined' || typeof self.postMessage !== 'function') {
+  port = (await import('node:worker_threads')).parentPort;
+}
+
+function infoOf(c) {
+  const i = c.info;
+  return {
+    sourceTime: i.sourceTime,
+    receivedTime: i.receivedTime,
+    publicationSequence: i.pubSeqHi * 4294967296 + (i.pubSeqLo >>> 0),
+    publisherGid: Array.from(i.gid),
+  };
+}
+
+function drain() {
+  for (const ep of subscriptions) {
+    const messages = [];
+    const transfer = [];
+    let data;
+    while ((data = client.take(ep, TakeMode.MESSAGE))) {
+      messages.push({ data, info: infoOf(client) });
+      transfer.push(data.buffer);
+    }
+    if (messages.length) post({ type: FromTools.BATCH, subscription: ep, messages }, transfer);
+  }
+  for (const [ep, pending] of clients) {
+    let data;
+    while (pending.size && (data = client.take(ep, TakeMode.RESPONSE))) {
+      const seq = client.info.reqHi * 4294967296 + (client.info.reqLo >>> 0);
+      const p = pending.get(seq);
+      if (p) {
+        pending.delete(seq);
+        clearTimeout(p.timer);
+        p.resolve({ data, info: infoOf(client) });
+      }
+    }
+  }
+}
+
+/** Sleep on the doorbell without blocking: counted as a sleeper so writers notify. */
+function arm() {
+  if (armed) return;
+  armed = true;
+  const i32 = client.bus.i32;
+  const bell = client.bell();
+  drain();
+  Atomics.add(i32, client.sleepersIndex, 1);
+  const r = Atomics.waitAsync(i32, client.bellIndex, bell);
+  const wake = () => {
+    Atomics.sub(i32, client.sleepersIndex, 1);
+    armed = false;
+    arm();
+  };
+  if (r.async) r.value.then(wake);
+  else Promise.resolve().then(wake);
+}
+
+function endpoint(spec, kind) {
+  return client.createEndpoint({ kind, node: spec.node, name: spec.name, type: spec.type, qos: spec.qos || {} }).index;
+}
+
+const methods = {
+  init(sab, pid) {
+    client = BusClient.attach(sab, pid);
+    arm();
+    return pid;
+  },
+  createNode(spec) {
+    return client.createNode({ name: spec.name, namespace: spec.namespace, domain: spec.domain, context: client.createContext() }).index;
+  },
+  subscribe(spec) {
+    const ep = endpoint(spec, KIND_SUBSCRIPTION);
+    subscriptions.add(ep);
+    Promise.resolve().then(drain);
+    return ep;
+  },
+  advertise(spec) {
+    return endpoint(spec, KIND_PUBLISHER);
+  },
+  publish(ep, data) {
+    return client.publish(ep, data, 10000);
+  },
+  publishOnce(spec, data) {
+    const key = JSON.stringify([spec.node, spec.name, spec.type, spec.qos || {}]);
+    let ep = publishers.get(key);
+    if (ep === undefined) {
+      ep = endpoint(spec, KIND_PUBLISHER);
+      publishers.set(key, ep);
+    }
+    return client.publish(ep, data, 10000);
+  },
+  call(spec, request, timeoutMs) {
+    const key = JSON.stringify([spec.node, spec.name, spec.type, spec.qos || {}]);
+    let ep = clientByKey.get(key);
+    if (ep === undefined) {
+      ep = endpoint(spec, KIND_CLIENT);
+      clientByKey.set(key, ep);
+      clients.set(ep, new Map());
+    }
+    const pending = clients.get(ep);
+    return new Promise((resolve, reject) => {
+      const seq = client.publish(ep, request, timeoutMs);
+      const timer = setTimeout(() => {
+        pending.delete(seq);
+        reject(Object.assign(new Error(`service call to '${spec.name}' timed out after ${timeoutMs} ms (server available: ${client.serverAvailable(ep)})`), { code: 2 }));
+      }, timeoutMs);
+      pending.set(seq, { resolve, reject, timer });
+      drain();
+    });
+  },
+  destroy(ep) {
+    subscriptions.delete(ep);
+    client.destroyEndpoint(ep);
+  },
+};
+
+async function onMessage(m) {
+  if (!m || (m.type !== ToTools.CALL && m.type !== ToTools.INIT)) return;
+  try {
+    const value = await methods[m.method](...m.args);
+    post({ type: FromTools.RETURN, id: m.id, ok: true, value });
+  } catch (e) {
+    post({ type: FromTools.RETURN, id: m.id, ok: false, error: { name: e.name, message: e.message, code: e.code || 1, stack: e.stack } });
+  }
+}
+
+if (port) port.on('message', onMessage);
+else self.onmessage = (e) => onMessage(e.data);

@@ -1,0 +1,194 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""
+A cached `colcon build --wasm` of the Humble snapshot, for tests.
+
+The build lives in `$COLCON_WASM_CACHE/humble-<hash>` (default cache
+`~/.cache/colcon-wasm`); the hash covers everything the build depends on:
+the snapshot archive, colcon-wasm's code and data, the Emscripten version,
+the package set and the extra packages. An unchanged build is reused; a
+fresh machine builds it once (a few minutes). Extend the package set with
+:func:`humble_build` (e.g. up to rclcpp once rmw_wasm_cpp exists).
+
+Use from a test module::
+
+    from humble_build import humble_build
+    build = humble_build()          # skips when the snapshot is absent
+    build.install / 'rcutils' ...
+"""
+
+import hashlib
+import json
+import os
+from pathlib import Path
+import shutil
+import subprocess
+import sys
+import tarfile
+import time
+
+import pytest
+
+REPO = Path(__file__).resolve().parents[1]
+
+"""Packages up to (and without) rmw_implementation: no rmw needed."""
+BELOW_RMW_UP_TO = (
+    'rmw_implementation', 'rcl_yaml_param_parser', 'builtin_interfaces',
+    'rcl_interfaces', 'rosidl_default_runtime', 'humble_probe')
+BELOW_RMW_SKIP = ('rmw_implementation',)
+
+"""Extra packages copied into the workspace (name: folder)."""
+EXTRA_PACKAGES = {'humble_probe': REPO / 'tests' / 'fixtures' / 'humble_probe'}
+
+_INPUT_FOLDERS = ('colcon_wasm', 'recipes', 'toolchains', 'patches',
+                  'templates', 'packages')
+
+"""colcon-wasm files that do not change what a build produces."""
+_NOT_INPUTS = ('colcon_wasm/cli/', 'colcon_wasm/blasm.py',
+               'colcon_wasm/doctor.py', 'recipes/schema.md',
+               'recipes/humble.repos')
+
+
+def humble_snapshot():
+    """Get the Humble snapshot folder ($COLCON_WASM_HUMBLE)."""
+    return Path(os.environ.get(
+        'COLCON_WASM_HUMBLE', REPO.parent / 'shared' / 'humble')).resolve()
+
+
+def cache_root():
+    """Get the cache folder ($COLCON_WASM_CACHE)."""
+    return Path(os.environ.get(
+        'COLCON_WASM_CACHE', Path.home() / '.cache' / 'colcon-wasm'))
+
+
+def unpacked_source():
+    """Get an unpacked copy of the snapshot's src/ (shared by all builds)."""
+    archive = humble_snapshot() / 'src.tar.xz'
+    if not archive.is_file():
+        return humble_snapshot() / 'src'  # missing: callers skip
+    stamp = _file_digest(archive)[:16]
+    target = cache_root() / f'humble-src-{stamp}'
+    if not (target / '.complete').is_file():
+        staging = Path(str(target) + '.tmp')
+        shutil.rmtree(staging, ignore_errors=True)
+        staging.mkdir(parents=True)
+        with tarfile.open(archive) as tar:
+            tar.extractall(staging)
+        (staging / '.complete').write_text('')
+        shutil.rmtree(target, ignore_errors=True)
+        staging.rename(target)
+    return target / 'src'
+
+
+def _file_digest(path):
+    digest = hashlib.sha256()
+    with open(path, 'rb') as handle:
+        for block in iter(lambda: handle.read(1 << 20), b''):
+            digest.update(block)
+    return digest.hexdigest()
+
+
+def _tree_digest(digest, folder):
+    for path in sorted(Path(folder).rglob('*')):
+        if not path.is_file() or '__pycache__' in path.parts:
+            continue
+        name = path.relative_to(REPO).as_posix() \
+            if REPO in path.parents else path.name
+        if name.startswith(_NOT_INPUTS):
+            continue
+        digest.update(name.encode())
+        digest.update(path.read_bytes())
+
+
+def _emscripten_version():
+    from colcon_wasm.toolchain import find_emscripten
+    return find_emscripten().version_string
+
+
+def inputs_hash(up_to, skip, extra):
+    """Hash what the build depends on."""
+    digest = hashlib.sha256()
+    digest.update(_file_digest(humble_snapshot() / 'src.tar.xz').encode())
+    for name in _INPUT_FOLDERS:
+        if (REPO / name).is_dir():
+            _tree_digest(digest, REPO / name)
+    for folder in sorted(extra.values()):
+        _tree_digest(digest, folder)
+    digest.update(json.dumps(
+        [sorted(up_to), sorted(skip), sorted(extra), _emscripten_version(),
+         sys.version_info[:2]]).encode())
+    return digest.hexdigest()[:16]
+
+
+def source_digest(folder):
+    """Hash every file below a source folder (path and bytes)."""
+    digest = hashlib.sha256()
+    for path in sorted(Path(folder).rglob('*')):
+        if path.is_file() and not path.is_symlink():
+            digest.update(path.relative_to(folder).as_posix().encode())
+            digest.update(path.read_bytes())
+    return digest.hexdigest()
+
+
+class HumbleBuild:
+    """A finished build of the Humble snapshot."""
+
+    def __init__(self, workspace, seconds, cached):
+        """Describe a build in a workspace folder."""
+        self.workspace = workspace
+        self.install = workspace / 'install_wasm'
+        self.build = workspace / 'build_wasm'
+        self.seconds = seconds
+        self.cached = cached
+        result = json.loads((workspace / 'result.json').read_text())
+        self.packages = result['packages']
+        self.command = result['command']
+
+
+def humble_build(up_to=BELOW_RMW_UP_TO, skip=BELOW_RMW_SKIP,
+                 extra=EXTRA_PACKAGES):
+    """
+    Build (or reuse) the Humble snapshot with `colcon build --wasm`.
+
+    :param up_to: `--packages-up-to` names
+    :param skip: `--packages-skip` names
+    :param extra: extra packages to add to the workspace (name: folder)
+    :returns: the :class:`HumbleBuild`
+    :raises pytest.skip.Exception: when the snapshot is absent
+    :raises AssertionError: when the build fails (with its log tail)
+    """
+    if not (humble_snapshot() / 'src.tar.xz').is_file():
+        pytest.skip(f'Humble snapshot not found at {humble_snapshot()} '
+                    '(set COLCON_WASM_HUMBLE)')
+    workspace = cache_root() / f'humble-{inputs_hash(up_to, skip, extra)}'
+    if (workspace / 'result.json').is_file():
+        return HumbleBuild(workspace, 0.0, cached=True)
+    shutil.rmtree(workspace, ignore_errors=True)
+    workspace.mkdir(parents=True)
+    shutil.copytree(unpacked_source(), workspace / 'src', symlinks=True)
+    for name, folder in extra.items():
+        shutil.copytree(folder, workspace / 'src' / 'extra' / name)
+    src_digest_before = source_digest(workspace / 'src')
+    command = [
+        'nice', '-n', '10', str(Path(sys.executable).parent / 'colcon'),
+        'build', '--wasm', '--parallel-workers', str(os.cpu_count() or 2),
+        '--packages-skip', *skip, '--packages-up-to', *up_to]
+    start = time.monotonic()
+    completed = subprocess.run(
+        command, cwd=workspace, stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT, text=True,
+        env=dict(os.environ, COLCON_HOME=str(workspace / '.colcon_home')))
+    seconds = time.monotonic() - start
+    (workspace / 'src_digest.txt').write_text(src_digest_before)
+    (workspace / 'build_output.txt').write_text(completed.stdout)
+    assert completed.returncode == 0, \
+        f'Humble --wasm build failed in {workspace}:\n' + \
+        completed.stdout[-8000:]
+    installed = sorted(
+        p.name for p in (workspace / 'install_wasm').iterdir()
+        if (p / 'share' / 'colcon-core' / 'packages' / p.name).is_file())
+    (workspace / 'result.json').write_text(json.dumps({
+        'command': command[3:], 'seconds': round(seconds, 1),
+        'packages': installed}, indent=2) + '\n')
+    return HumbleBuild(workspace, seconds, cached=False)

@@ -1,0 +1,74 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""`blasm` keeps the thesis' options on top of `colcon build --wasm`."""
+
+import os
+import subprocess
+
+from colcon_helpers import copy_fixture
+from colcon_helpers import node
+from colcon_helpers import tool
+from colcon_wasm.blasm import colcon_arguments
+from colcon_wasm.blasm import create_parser
+
+
+def blasm(workspace, *args):
+    """Run the installed blasm console script."""
+    env = dict(os.environ, COLCON_HOME=str(workspace / '.colcon_home'))
+    env.pop('COLCON_DEFAULTS_FILE', None)
+    return subprocess.run(
+        [tool('blasm')] + list(args), cwd=workspace, env=env,
+        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+        timeout=900)
+
+
+def test_help_lists_the_thesis_options(tmp_path):
+    result = blasm(tmp_path, '-h')
+    assert result.returncode == 0
+    for option in ('-h', '-c', '-d', '-u PKG', '-s PKG', '-i', '-p', '-v'):
+        assert option in result.stdout, option
+
+
+def test_option_translation():
+    options, extra = create_parser().parse_known_args(
+        ['-u', 'calc_app', '-i', 'a b', '-v', '-d', '--', '--merge-install'])
+    assert colcon_arguments(options, extra) == [
+        'build', '--wasm', '--packages-up-to', 'calc_app',
+        '--packages-ignore', 'a', 'b', '--event-handlers', 'console_direct+',
+        '--wasm-debug', '--merge-install', '--cmake-args',
+        '-DCMAKE_VERBOSE_MAKEFILE=ON']
+
+
+def test_python_is_refused(tmp_path):
+    result = blasm(tmp_path, '-p')
+    assert result.returncode == 2
+    assert 'blasm -p (Python in the browser) is not supported' in \
+        result.stdout
+
+
+def test_not_a_workspace(tmp_path):
+    result = blasm(tmp_path, '-u', 'x')
+    assert result.returncode == 1
+    assert 'is not a workspace directory' in result.stdout
+
+
+def test_debug_build_select_and_clean(tmp_path):
+    ws = copy_fixture('ws_basic', tmp_path)
+    result = blasm(ws, '-d', '-u', 'calc_app', '--parallel-workers', '1')
+    assert result.returncode == 0, result.stdout[-3000:]
+    assert '[BLASM]: colcon build --wasm --packages-up-to calc_app' in \
+        result.stdout
+    cache = (ws / 'build_wasm' / 'calc_app' / 'CMakeCache.txt').read_text()
+    assert 'CMAKE_BUILD_TYPE:STRING=Debug' in cache
+    assert 'CMAKE_VERBOSE_MAKEFILE:BOOL=ON' in cache
+    calc = ws / 'install_wasm' / 'calc_app' / 'bin' / 'calc.js'
+    assert 'caught DivisionByZero' in node(calc, 1, 0).stdout
+    result = blasm(ws, '-s', 'calc_lib', '-v')
+    assert result.returncode == 0, result.stdout[-3000:]
+    assert 'Building CXX object' in result.stdout  # -s rebuilt from clean
+    result = blasm(ws, '-c')
+    assert result.returncode == 0
+    for name in ('build_wasm', 'install_wasm', 'log'):
+        assert not (ws / name).exists(), name
+    assert (ws / 'src').is_dir()

@@ -1,0 +1,30 @@
+# colcon-wasm initial cache (`cmake -C`): what a ROS 2 workspace needs when
+# cross-compiled to WebAssembly. Values given with -D on the command line
+# (recipe cmake-args, then the user's --cmake-args) override these.
+
+# static libraries only: WebAssembly has no dlopen here
+set(BUILD_SHARED_LIBS OFF CACHE BOOL "colcon-wasm: static libraries only")
+set(BUILD_TESTING OFF CACHE BOOL "colcon-wasm: tests do not run in the browser")
+
+if(COLCON_WASM_DEBUG)
+  set(CMAKE_BUILD_TYPE Debug CACHE STRING "colcon-wasm: --wasm-debug")
+else()
+  set(CMAKE_BUILD_TYPE Release CACHE STRING "colcon-wasm: default build type")
+endif()
+
+# one middleware, linked statically, no runtime selection (no dlopen)
+set(RMW_IMPLEMENTATION rmw_wasm_cpp CACHE STRING "colcon-wasm: the one RMW")
+set(RMW_IMPLEMENTATION_DISABLE_RUNTIME_SELECTION ON CACHE BOOL
+  "colcon-wasm: no dlopen, the RMW is linked")
+# Introspection type supports only: the recipe skips the DDS type support
+# generators (rosidl_typesupport_fastrtps_c/cpp), so rosidl registers no other.
+set(RCL_LOGGING_IMPLEMENTATION rcl_logging_noop CACHE STRING
+  "colcon-wasm: no spdlog file logging in the browser")
+set(TRACETOOLS_DISABLED ON CACHE BOOL "colcon-wasm: no LTTng in the browser")
+
+# no host pkg-config: it would find host (x86) libraries
+set(PKG_CONFIG_EXECUTABLE "PKG_CONFIG_EXECUTABLE-NOTFOUND" CACHE FILEPATH
+  "colcon-wasm: no host pkg-config")
+
+# vendor packages: never download or build a bundled copy when one is installed
+set(FORCE_BUILD_VENDOR_PKG OFF CACHE BOOL "colcon-wasm: use installed packages")
