@@ -248,6 +248,93 @@ async function demoFlow() {
   await context.close();
 }
 
+// The same flow on Humble's rclcpp examples (built by the rmw_wasm_cpp issue).
+async function humbleFlow() {
+  const context = await browser.newContext({ viewport: { width: 1440, height: 900 } });
+  const page = await context.newPage();
+  page.on('pageerror', (e) => pageErrors.push(e.message));
+  await page.addInitScript(RECORD_LOGS);
+  const pub = 'examples_rclcpp_minimal_publisher/publisher_member_function';
+  const sub = 'examples_rclcpp_minimal_subscriber/subscriber_member_function';
+
+  await step(page, 'humble-open-with-run-publisher-subscriber', async () => {
+    await page.goto(`${options.url}?run=${pub}&run=${sub}`);
+    await page.waitForFunction(() => document.body.dataset.state === 'ready', null, { timeout: STEP_TIMEOUT });
+    await waitForLog(page, 'publisher_member_function', /Publishing: 'Hello, world! \d+'/);
+    const firstPublish = await page.evaluate(() => window.__launcherLogs.find((l) => /Publishing:/.test(l.text)).time);
+    await waitForLog(page, 'subscriber_member_function', /I heard: 'Hello, world! \d+'/);
+    return { first_publish_ms: Math.round(firstPublish) };
+  });
+
+  await step(page, 'humble-nodes-topics-echo', async () => {
+    await tab(page, 'nodes');
+    await page.locator('tr[data-node="/minimal_publisher"]').waitFor({ timeout: STEP_TIMEOUT });
+    await page.locator('tr[data-node="/minimal_subscriber"]').waitFor({ timeout: STEP_TIMEOUT });
+    await tab(page, 'topics');
+    const row = page.locator('tr[data-topic="/topic"]');
+    await row.waitFor({ timeout: STEP_TIMEOUT });
+    const cells = await row.locator('td').allTextContents();
+    if (cells[1] !== 'std_msgs/msg/String') throw new Error(`/topic row is ${JSON.stringify(cells)}`);
+    await row.click();
+    await page.waitForFunction(() => /data: 'Hello, world! \d+'/.test(
+      document.querySelector('[data-echo="/topic"] .echo-msg pre')?.textContent || ''), null, { timeout: STEP_TIMEOUT });
+  });
+
+  await step(page, 'humble-publish-reaches-the-subscriber', async () => {
+    await page.locator('.topic-inspector button[data-subtab="publish"]').click();
+    await page.locator('[data-publish="/topic"] input[data-field="data"]').fill('from the page');
+    await page.locator('[data-publish="/topic"] button.primary').click();
+    await waitForLog(page, 'subscriber_member_function', /I heard: 'from the page'/);
+  });
+
+  await step(page, 'humble-service-call', async () => {
+    await startFromSidebar(page, 'examples_rclcpp_minimal_service/service_main');
+    await tab(page, 'services');
+    const row = page.locator('tr[data-service="/add_two_ints"]');
+    await row.waitFor({ timeout: STEP_TIMEOUT });
+    await row.click();
+    await page.locator('[data-call="/add_two_ints"] input[data-field="a"]').fill('2');
+    await page.locator('[data-call="/add_two_ints"] input[data-field="b"]').fill('40');
+    await page.locator('[data-call="/add_two_ints"] button.primary').click();
+    await page.waitForFunction(() => /sum: 42/.test(document.querySelector('[data-response="/add_two_ints"]')?.textContent || ''),
+      null, { timeout: STEP_TIMEOUT });
+  });
+
+  await step(page, 'humble-action-goal-with-feedback', async () => {
+    await startFromSidebar(page, 'examples_rclcpp_minimal_action_server/action_server_member_functions');
+    await tab(page, 'actions');
+    const row = page.locator('tr[data-action="/fibonacci"]');
+    await row.waitFor({ timeout: STEP_TIMEOUT });
+    await row.click();
+    await page.locator('[data-goal="/fibonacci"] input[data-field="order"]').fill('5');
+    await page.locator('[data-goal="/fibonacci"] button.primary').click();
+    await page.waitForFunction(() => /SUCCEEDED/.test(document.querySelector('[data-result="/fibonacci"]')?.textContent || ''),
+      null, { timeout: STEP_TIMEOUT });
+    const text = await page.locator('[data-goal="/fibonacci"]').textContent();
+    if (!/feedback #\d+/.test(text)) throw new Error('no feedback was shown');
+    const result = await page.locator('[data-result="/fibonacci"] pre').textContent();
+    if (!/sequence:\n- 0\n- 1\n- 1\n- 2\n- 3\n- 5/.test(result)) throw new Error(`unexpected result: ${result}`);
+  });
+
+  await step(page, 'humble-parameters-list-get-set', async () => {
+    await tab(page, 'parameters');
+    await page.locator('[data-view="parameters"] select').selectOption('/minimal_publisher');
+    const input = page.locator('[data-params="/minimal_publisher"] input[data-param="use_sim_time"]');
+    await input.waitFor({ timeout: STEP_TIMEOUT });
+    if ((await input.inputValue()) !== 'false') throw new Error(`use_sim_time is ${await input.inputValue()}`);
+    await input.fill('true');
+    await input.press('Enter');
+    await page.locator('[data-params="/minimal_publisher"] .ok-text', { hasText: 'set' }).waitFor({ timeout: STEP_TIMEOUT });
+  });
+
+  await step(page, 'humble-stop-updates-the-graph', async () => {
+    await page.locator('.proc[data-proc^="publisher_member_function"] button.stop').click();
+    await tab(page, 'nodes');
+    await page.locator('tr[data-node="/minimal_publisher"]').waitFor({ state: 'detached', timeout: STEP_TIMEOUT });
+  });
+  await context.close();
+}
+
 async function notIsolatedFlow() {
   // The same server, with the isolation headers taken out of every response.
   const context = await browser.newContext({ viewport: { width: 1280, height: 720 } });
@@ -277,6 +364,7 @@ async function notIsolatedFlow() {
 try {
   if (options.flow === 'demo' || !options.flow) await demoFlow();
   if (options.flow === 'isolation' || !options.flow) await notIsolatedFlow();
+  if (options.flow === 'humble') await humbleFlow();
 } finally {
   await browser.close();
 }
