@@ -78,7 +78,8 @@ def test_demo_flow_in_the_browser(served_demo):
                  'echo-decodes-messages', 'publish-form-reaches-the-listener',
                  'service-call-returns',
                  'stopping-a-node-updates-the-graph', 'a-crash-is-reported-and-the-others-go-on',
-                 'plot-of-a-numeric-topic', 'echo-keeps-up-with-1-kHz'):
+                 'plot-of-a-numeric-topic', 'image-view-of-a-camera-topic',
+                 'echo-keeps-up-with-1-kHz'):
         assert name in steps, 'step {} did not run'.format(name)
     first = steps['open-with-run-talker-listener']['first_publish_ms']
     warm = steps['reopen-warm-first-publish']['first_publish_ms']

@@ -201,6 +201,30 @@ async function demoFlow() {
     return { plotted_pixels: inked };
   });
 
+  await step(page, 'image-view-of-a-camera-topic', async () => {
+    await startFromSidebar(page, 'demo_nodes/camera');
+    await tab(page, 'topics');
+    const row = page.locator('tr[data-topic="/camera/image"]');
+    await row.waitFor({ timeout: STEP_TIMEOUT });
+    await row.click();
+    await page.locator('.topic-inspector button[data-subtab="image"].active').waitFor({ timeout: STEP_TIMEOUT });
+    await page.locator('.image-view .note', { hasText: '160×120 rgb8' }).waitFor({ timeout: STEP_TIMEOUT });
+    const pixels = await page.evaluate(() => {
+      const c = document.querySelector('canvas.image');
+      const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+      const at = (x, y) => Array.from(d.slice((y * c.width + x) * 4, (y * c.width + x) * 4 + 4));
+      let white = 0;
+      for (let i = 0; i < d.length; i += 4) if (d[i] === 255 && d[i + 1] === 255 && d[i + 2] === 255) white++;
+      return { size: [c.width, c.height], corner: at(0, 0), bottomRight: at(c.width - 1, c.height - 1), white };
+    });
+    // the gradient: red grows to the right, green downwards, blue 96; a 30x30 white square
+    if (pixels.size.join('x') !== '160x120') throw new Error(`canvas is ${pixels.size}`);
+    if (pixels.corner.join(',') !== '0,0,96,255') throw new Error(`top-left pixel is ${pixels.corner}`);
+    if (pixels.bottomRight.join(',') !== '253,252,96,255') throw new Error(`bottom-right pixel is ${pixels.bottomRight}`);
+    if (pixels.white !== 30 * 30) throw new Error(`${pixels.white} white pixels, expected the 30x30 square`);
+    return { white_pixels: pixels.white };
+  });
+
   await step(page, 'echo-keeps-up-with-1-kHz', async () => {
     await startFromSidebar(page, 'demo_nodes/oscillator', '--ros-args -r __node:=fast -r wave:=fast_wave -p rate:=1000');
     await tab(page, 'topics');

@@ -10,7 +10,7 @@ import { test } from 'node:test';
 
 import { TypeRegistry } from '../../packages/wasm_js/src/cdr.mjs';
 import { asNumber, getPath, numericPaths } from '../../packages/wasm_js/src/tools/fields.mjs';
-import { compressedMimeType, ImageError, imageToRgba } from '../../packages/wasm_js/src/tools/image.mjs';
+import { compressedMimeType, ImageError, imageKind, imageToRgba } from '../../packages/wasm_js/src/tools/image.mjs';
 import { formatBandwidth, TopicStats } from '../../packages/wasm_js/src/tools/stats.mjs';
 import { formatYaml, parseYaml, YamlError } from '../../packages/wasm_js/src/tools/yaml.mjs';
 
@@ -170,4 +170,19 @@ test('graphModel: nodes with endpoints, counts, hidden names, the tools process 
   assert.deepEqual(model.topics.map((t) => [t.name, t.publishers, t.subscribers, t.hidden]),
     [['/chatter', 1, 0, false], ['/fib/_action/feedback', 1, 0, true]]);
   assert.deepEqual(model.nodes[0].services, [{ name: '/talker/list_parameters', type: 'rcl_interfaces/srv/ListParameters' }]);
+});
+
+test('imageKind knows image types and messages of their shape', () => {
+  const shaped = new TypeRegistry([{ schema: 1, package: 'p', messages: {
+    'p/msg/Frame': { fields: [{ name: 'height', type: 'uint32' }, { name: 'width', type: 'uint32' },
+      { name: 'encoding', type: 'string' }, { name: 'step', type: 'uint32' }, { name: 'data', type: 'uint8', sequence: true }] },
+    'p/msg/Jpeg': { fields: [{ name: 'format', type: 'string' }, { name: 'data', type: 'uint8', sequence: true }] },
+    'p/msg/Other': { fields: [{ name: 'data', type: 'uint8', sequence: true }] },
+  } }]);
+  assert.equal(imageKind(shaped, 'sensor_msgs/msg/Image'), 'raw');
+  assert.equal(imageKind(shaped, 'sensor_msgs/msg/CompressedImage'), 'compressed');
+  assert.equal(imageKind(shaped, 'p/msg/Frame'), 'raw');
+  assert.equal(imageKind(shaped, 'p/msg/Jpeg'), 'compressed');
+  assert.equal(imageKind(shaped, 'p/msg/Other'), null);
+  assert.equal(imageKind(shaped, 'p/msg/Unknown'), null);
 });
