@@ -95,7 +95,7 @@ def _tree_digest(digest, folder):
             continue
         name = path.relative_to(REPO).as_posix() \
             if REPO in path.parents else path.name
-        if name.startswith(_NOT_INPUTS):
+        if name.startswith(_NOT_INPUTS) or name.endswith('.md'):
             continue
         digest.update(name.encode())
         digest.update(path.read_bytes())
