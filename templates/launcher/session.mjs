@@ -6,7 +6,7 @@
 // goes through here, so the Runtime API is used in this file only.
 
 import { TypeRegistry } from '/wasm_js/cdr.mjs';
-import { graphModel } from '/wasm_js/tools/graph.mjs';
+import { graphModel, subscriptionQos } from '/wasm_js/tools/graph.mjs';
 
 const SEVERITY = /^\s*\[(DEBUG|INFO|WARN|WARNING|ERROR|FATAL)\]/;
 const MAX_LOG = 5000;
@@ -155,11 +155,16 @@ export class Session {
 
   // ---------------------------------------------------------------- tools
 
-  /** Subscribe to a topic: onBatch([{bytes, time, seq}]). Returns {close()} at once. */
+  /**
+   * Subscribe to a topic: onBatch([{bytes, time, seq}]). Returns {close()} at
+   * once. The QoS matches the topic's publishers (as ros2 topic echo does).
+   */
   subscribe(topic, type, onBatch) {
     let seq = 0;
     let closed = false;
-    const pending = this.tools.subscribe({ topic, type, qos: {} }, (messages) => {
+    const entry = this.graph.topics.find((t) => t.name === topic);
+    const qos = subscriptionQos(entry ? entry.publisherQos : []);
+    const pending = this.tools.subscribe({ topic, type, qos }, (messages) => {
       if (closed) return;
       const now = performance.now();
       onBatch(messages.map((m) => ({ bytes: m.data, info: m.info, time: now, seq: ++seq })));

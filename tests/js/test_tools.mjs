@@ -186,3 +186,14 @@ test('imageKind knows image types and messages of their shape', () => {
   assert.equal(imageKind(shaped, 'p/msg/Other'), null);
   assert.equal(imageKind(shaped, 'p/msg/Unknown'), null);
 });
+
+test('subscriptionQos hears every publisher, as ros2 topic echo chooses', async () => {
+  const { subscriptionQos } = await import('../../packages/wasm_js/src/tools/graph.mjs');
+  const reliable = { reliability: 'reliable', durability: 'volatile' };
+  const sensor = { reliability: 'best_effort', durability: 'volatile' };
+  const latched = { reliability: 'reliable', durability: 'transient_local' };
+  assert.deepEqual(subscriptionQos([]), { history: 'keep_last', depth: 100, reliability: 'reliable', durability: 'volatile' });
+  assert.equal(subscriptionQos([reliable, sensor]).reliability, 'best_effort');
+  assert.equal(subscriptionQos([latched]).durability, 'transient_local');
+  assert.equal(subscriptionQos([latched, reliable]).durability, 'volatile');
+});
