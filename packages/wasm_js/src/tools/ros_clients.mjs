@@ -14,6 +14,9 @@
  * and a TypeRegistry (cdr.mjs) holding the needed type descriptions.
  */
 
+/** The longest setTimeout delay: how long a goal's result is waited for. */
+const RESULT_TIMEOUT_MS = 2 ** 31 - 1;
+
 /** rcl_action goal status codes (action_msgs/msg/GoalStatus). */
 export const GoalStatus = Object.freeze({
   0: 'UNKNOWN', 1: 'ACCEPTED', 2: 'EXECUTING', 3: 'CANCELING', 4: 'SUCCEEDED', 5: 'CANCELED', 6: 'ABORTED',
@@ -104,8 +107,8 @@ export class ActionClient {
     const result = (async () => {
       try {
         const request = registry.encode(spec.get_result.request, { goal_id: { uuid } });
-        // the server answers when the goal ends: no deadline
-        const bytes = await bus.call(`${name}/_action/get_result`, `${type}_GetResult`, request, -1);
+        // the server answers when the goal ends: wait as long as a timer can (24.8 days)
+        const bytes = await bus.call(`${name}/_action/get_result`, `${type}_GetResult`, request, RESULT_TIMEOUT_MS);
         const value = registry.decode(spec.get_result.response, bytes);
         return { status: value.status, statusText: GoalStatus[value.status] || String(value.status), result: value.result };
       } finally {
