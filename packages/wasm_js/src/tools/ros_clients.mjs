@@ -10,7 +10,7 @@
  * Both take a `bus` with two operations, which the page and the Node tools
  * give them on top of the wasm_js tools process:
  *   bus.call(service, type, requestBytes, timeoutMs) -> Promise<Uint8Array>
- *   bus.subscribe(topic, type, onBatch([{bytes, time}])) -> {close()}
+ *   bus.subscribe(topic, type, onBatch([{bytes, time}])) -> {close(), ready?: Promise}
  * and a TypeRegistry (cdr.mjs) holding the needed type descriptions.
  */
 
@@ -92,6 +92,7 @@ export class ActionClient {
     });
     let response;
     try {
+      if (feedback.ready) await feedback.ready;  // hear the first feedback too
       const request = registry.encode(spec.send_goal.request, { goal_id: { uuid }, goal });
       const bytes = await bus.call(`${name}/_action/send_goal`, `${type}_SendGoal`, request, timeoutMs);
       response = registry.decode(spec.send_goal.response, bytes);
