@@ -118,9 +118,13 @@ class DevToolsPipe:
             self._buffer += chunk
 
     def close(self):
-        """Stop Chromium."""
-        self.process.kill()
-        self.process.wait()
+        """Stop Chromium (all its processes) and wait for it."""
+        try:
+            self.call('Browser.close', timeout=20)
+            self.process.wait(timeout=30)
+        except (AssertionError, OSError, subprocess.TimeoutExpired):
+            self.process.kill()
+            self.process.wait()
         os.close(self._write_fd)
         os.close(self._read_fd)
 
@@ -144,7 +148,8 @@ def served_build(tmp_path):
 
 
 def test_executable_runs_in_a_browser_worker(served_build):
-    with tempfile.TemporaryDirectory() as profile:
+    # Chromium's helper processes may still touch the profile while exiting
+    with tempfile.TemporaryDirectory(ignore_cleanup_errors=True) as profile:
         chrome = DevToolsPipe(profile)
         try:
             targets = chrome.call('Target.getTargets')['targetInfos']
