@@ -24,7 +24,6 @@ export class Session {
     this.workspace = workspace;
     this.listeners = new Map();
     this.processes = new Map();
-    this.counters = new Map();
     this.nextId = 1;
     this.runtime = null;
     this.tools = null;
@@ -50,10 +49,7 @@ export class Session {
    */
   async start() {
     const { Runtime } = await import(this.workspace.runtime);
-    const registry = TypeRegistry.fetch(this.workspace.types).catch((e) => {
-      this.typeError = e.message;
-      return new TypeRegistry();
-    });
+    const registry = this.loadTypes();
     this.runtime = await Runtime.create({});
     this.ready = (async () => {
       this.registry = await registry;
@@ -64,6 +60,23 @@ export class Session {
     })();
     // awaited by the page after it started the ?run executables
     this.ready.catch(() => {});
+  }
+
+  /** Load every package's types.json; a broken one is reported, the others load. */
+  async loadTypes() {
+    const registry = new TypeRegistry();
+    const problems = [];
+    await Promise.all(this.workspace.types.map(async (url) => {
+      try {
+        const response = await fetch(url);
+        if (!response.ok) throw new Error(`HTTP ${response.status}`);
+        registry.add(await response.json());
+      } catch (e) {
+        problems.push(`${url}: ${e.message}`);
+      }
+    }));
+    if (problems.length) this.typeError = `cannot load ${problems.join('; ')}`;
+    return registry;
   }
 
   refreshGraph(raw) {
