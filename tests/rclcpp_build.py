@@ -15,6 +15,9 @@ fresh machine builds it once.
     build = rclcpp_build()      # skips when the Humble snapshot is absent
 """
 
+import os
+from pathlib import Path
+
 from humble_build import humble_build
 from humble_build import REPO
 
@@ -48,8 +51,28 @@ RCLCPP_UP_TO = (
 RCLCPP_SKIP = ()
 
 
+class ExistingBuild:
+    """A workspace built beforehand by the developer (COLCON_WASM_RCLCPP_WORKSPACE)."""
+
+    def __init__(self, workspace):
+        """Use `workspace`/install_wasm as it is."""
+        self.workspace = Path(workspace)
+        self.install = self.workspace / 'install_wasm'
+        self.build = self.workspace / 'build_wasm'
+        assert self.install.is_dir(), f'no install_wasm in {workspace}'
+        self.packages = sorted(p.name for p in self.install.iterdir() if p.is_dir())
+
+
 def rclcpp_build():
-    """Build (or reuse) Humble up to rclcpp, the examples and the rmw tests."""
+    """Build (or reuse) Humble up to rclcpp, the examples and the rmw tests.
+
+    A developer iterating on one package can set COLCON_WASM_RCLCPP_WORKSPACE
+    to a workspace they built with `colcon build --wasm` themselves; CI never
+    sets it.
+    """
+    workspace = os.environ.get('COLCON_WASM_RCLCPP_WORKSPACE')
+    if workspace:
+        return ExistingBuild(workspace)
     return humble_build(up_to=RCLCPP_UP_TO, skip=RCLCPP_SKIP, extra=TEST_PACKAGES)
 
 

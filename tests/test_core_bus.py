@@ -20,6 +20,7 @@ SRC = HERE.parent / 'packages' / 'wasm_js' / 'src'
 
 CHECKS = [
     'lock_stolen_from_dead_owner',
+    'async_lockers_all_proceed',
     'killed_mid_mutation_leaves_nothing_half_visible',
     'zombie_ring_is_drained_then_freed',
     'bus_grows_for_large_messages',

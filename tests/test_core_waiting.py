@@ -16,8 +16,9 @@ def test_wait_is_woken_by_a_publish_and_a_timed_wait_times_out_on_time(
     waiter = harness.results(run, 'waiter')
     why = harness.explain(run)
     assert waiter['timed_out'] == '1', why
-    # 200 ms asked; Atomics.wait's own timeout, no polling loop behind it.
-    assert 199.5 <= float(waiter['timed_wait_ms']) < 300, why
+    # 200 ms asked: never early (Atomics.wait's own timeout, no polling loop
+    # behind it); the upper bound leaves room for a loaded CI machine.
+    assert 199.5 <= float(waiter['timed_wait_ms']) < 1000, why
     assert waiter['woken'] == '1' and waiter['taken'] == '1', why
 
 
@@ -51,7 +52,11 @@ def test_deadline_and_liveliness_events_without_timers(platform):
     # One message, then silence: the wait wakes by itself at the 50 ms
     # deadline (its timeout is cut to the next expiry).
     assert 49 <= float(d['first_event_ms']) < 1000, why
-    assert d['offered'] == '1' and d['requested'] == '1', why
+    # One missed period per 50 ms of silence (more if the machine was slow
+    # to run the wait after it woke).
+    periods = int(float(d['taken_ms']) // 50)
+    assert 1 <= int(d['offered']) <= periods, why
+    assert 1 <= int(d['requested']) <= periods, why
     # MANUAL_BY_TOPIC with a 50 ms lease, not asserted since: lost.
     assert d['liveliness_lost'] == '1', why
     assert (d['alive'], d['not_alive']) == ('0', '1'), why

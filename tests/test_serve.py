@@ -11,7 +11,10 @@ import json
 import os
 from pathlib import Path
 import socket
+import subprocess
+import sys
 import threading
+import urllib.request
 
 from colcon_wasm.launch.install_space import InstallSpace
 from colcon_wasm.server import find_runtime
@@ -68,7 +71,12 @@ def install(tmp_path_factory):
                                                   'actions': {}}))
     runtime = root / 'runtime'
     runtime.mkdir()
-    (runtime / 'index.mjs').write_text('export const x = 1;\n' * 100)
+    (runtime / 'index.mjs').write_text("import { y } from './dep.mjs';\n"
+                                       + 'export const x = 1;\n' * 100)
+    (runtime / 'dep.mjs').write_text(
+        "export { z } from './tools/deep.mjs';\nexport const y = 2;\n")
+    (runtime / 'tools').mkdir()
+    (runtime / 'tools' / 'deep.mjs').write_text('export const z = 3;\n')
     (runtime / 'index.mjs.gz').write_bytes(gzip.compress(b'precompressed'))
     (runtime / 'sub').mkdir()
     os.symlink('/etc/hostname', runtime / 'link_out.mjs')
@@ -250,6 +258,17 @@ def test_page_embeds_the_workspace(server):
     assert embedded['packages'][0]['executables'][0]['name'] == 'talker'
 
 
+def test_page_preloads_its_module_graph_and_the_run_executables(server):
+    _, _, body = _get(server, '/?run=demo_nodes/talker&run=demo_nodes/nope')
+    html = body.decode()
+    for module in ('/launcher/app.mjs', '/launcher/session.mjs', '/launcher/views/topics.mjs',
+                   '/wasm_js/index.mjs', '/wasm_js/dep.mjs', '/wasm_js/tools/deep.mjs'):
+        assert '<link rel="modulepreload" href="{}">'.format(module) in html, module
+    assert '<link rel="preload" href="/ws/demo_nodes/lib/demo_nodes/talker.wasm" as="fetch" ' \
+        'crossorigin>' in html
+    assert html.count('rel="preload"') == 1
+
+
 def test_port_already_taken_is_a_clear_error(install, server):
     base, runtime = install
     port = server.server_address[1]
@@ -311,3 +330,38 @@ def test_runtime_lookup_prefers_the_install_space(tmp_path):
     assert directory == share and origin.startswith('install space')
     with pytest.raises(ServeError, match='the wasm_js runtime was not found'):
         find_runtime(InstallSpace(tmp_path / 'bundled'), tmp_path / 'none')
+
+
+def _colcon_wasm():
+    return str(Path(sys.executable).parent / 'colcon-wasm')
+
+
+def test_cli_without_an_install_space(tmp_path):
+    result = subprocess.run([_colcon_wasm(), 'serve', '--install-base', str(tmp_path / 'nope')],
+                            capture_output=True, text=True, timeout=60)
+    assert result.returncode == 1
+    assert result.stderr == (
+        "colcon-wasm serve: no install space at '{}': run 'colcon build --wasm' in the workspace "
+        'first, or pass --install-base DIR\n'.format(tmp_path / 'nope'))
+
+
+def test_cli_port_taken_and_serving(install, server):
+    base, _ = install
+    port = server.server_address[1]
+    result = subprocess.run([_colcon_wasm(), 'serve', '--install-base', str(base),
+                             '--port', str(port)], capture_output=True, text=True, timeout=60)
+    assert result.returncode == 1
+    assert 'colcon-wasm serve: port {} on 127.0.0.1 is already in use'.format(port) \
+        in result.stderr
+    process = subprocess.Popen([_colcon_wasm(), 'serve', '--install-base', str(base),
+                                '--port', '0'], stdout=subprocess.PIPE, text=True)
+    try:
+        lines = [process.stdout.readline() for _ in range(3)]
+        assert lines[0] == 'Serving 2 executable(s) of {}\n'.format(base)
+        url = lines[2].split()[1]
+        with urllib.request.urlopen(url + 'workspace.json', timeout=30) as response:
+            assert response.headers['Cross-Origin-Embedder-Policy'] == 'require-corp'
+            assert json.load(response)['packages'][0]['name'] == 'demo_nodes'
+    finally:
+        process.terminate()
+        process.wait(10)

@@ -40,6 +40,7 @@ function parseResults(text, into) {
 class Bench {
   constructor(env) {
     this.env = env;
+    this.trace = env.trace || (() => {});
   }
 
   async runtime(warmHosts = 1) {
@@ -54,6 +55,7 @@ class Bench {
     const waiters = [];
     const lines = [];
     let exited = null;
+    this.trace(`spawn ${role} ${JSON.stringify(opts)}`);
     const proc = await rt.spawn({
       url: this.env.exe,
       args,
@@ -70,6 +72,7 @@ class Bench {
         }
       },
       onExit: (e) => {
+        this.trace(`${role} exited ${JSON.stringify(e)}`);
         exited = e;
         for (const w of waiters) w.reject(new Error(`${role} exited (${e.reason || e.code}) before '${w.key}': ${lines.join(' | ')}`));
       },

@@ -15,13 +15,20 @@ const { Runtime } = await import(new URL('index.mjs', src).href);
 const { HostWorker } = await import(new URL('platform.mjs', src).href);
 const { runAll } = await import('./bench.mjs');
 const only = flags.filter((f) => f.startsWith('--only=')).flatMap((f) => f.slice(7).split(','));
+// If a measurement never settles, say so instead of exiting silently (code 13).
+const keepAlive = setInterval(() => {}, 1 << 30);
+process.on('exit', (code) => {
+  if (code === 13) process.stderr.write('run_node.mjs: a measurement never finished\n');
+});
 const result = await runAll({
   Runtime, HostWorker, exe: path.resolve(exe), exeNoPthread: path.resolve(exeNoPthread),
   here: new URL('./', import.meta.url).href,
   log: (m) => process.stderr.write(`[node] ${m}\n`),
+  trace: process.env.BENCH_TRACE ? (m) => process.stderr.write(`[trace] ${m}\n`) : undefined,
 }, {
   quick: flags.includes('--quick'),
   parts: only.length ? only : undefined,
 });
+clearInterval(keepAlive);
 process.stdout.write(`${JSON.stringify(result)}\n`);
 process.exit(0);

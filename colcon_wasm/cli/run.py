@@ -21,7 +21,9 @@ class RunCommand(CliExtensionPoint):
         parser.add_argument('executable', metavar='EXE', help='The executable name')
         parser.add_argument(
             'arguments', nargs=argparse.REMAINDER, metavar='ARGS',
-            help='Arguments of the executable, e.g. --ros-args -r chatter:=news -p rate:=5')
+            help='Arguments of the executable, e.g. --ros-args -r chatter:=news -p rate:=5 '
+                 '(everything after EXE goes to the executable: give the options of run '
+                 'before PKG)')
 
     def main(self, *, args):  # noqa: D102
         plan = LaunchPlan([NodeProcess(args.package, args.executable, arguments=args.arguments)])

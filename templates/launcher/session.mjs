@@ -6,7 +6,7 @@
 // goes through here, so the Runtime API is used in this file only.
 
 import { TypeRegistry } from '/wasm_js/cdr.mjs';
-import { graphModel } from '/wasm_js/tools/graph.mjs';
+import { graphModel, subscriptionQos } from '/wasm_js/tools/graph.mjs';
 
 const SEVERITY = /^\s*\[(DEBUG|INFO|WARN|WARNING|ERROR|FATAL)\]/;
 const MAX_LOG = 5000;
@@ -24,7 +24,6 @@ export class Session {
     this.workspace = workspace;
     this.listeners = new Map();
     this.processes = new Map();
-    this.counters = new Map();
     this.nextId = 1;
     this.runtime = null;
     this.tools = null;
@@ -50,10 +49,7 @@ export class Session {
    */
   async start() {
     const { Runtime } = await import(this.workspace.runtime);
-    const registry = TypeRegistry.fetch(this.workspace.types).catch((e) => {
-      this.typeError = e.message;
-      return new TypeRegistry();
-    });
+    const registry = this.loadTypes();
     this.runtime = await Runtime.create({});
     this.ready = (async () => {
       this.registry = await registry;
@@ -64,6 +60,23 @@ export class Session {
     })();
     // awaited by the page after it started the ?run executables
     this.ready.catch(() => {});
+  }
+
+  /** Load every package's types.json; a broken one is reported, the others load. */
+  async loadTypes() {
+    const registry = new TypeRegistry();
+    const problems = [];
+    await Promise.all(this.workspace.types.map(async (url) => {
+      try {
+        const response = await fetch(url);
+        if (!response.ok) throw new Error(`HTTP ${response.status}`);
+        registry.add(await response.json());
+      } catch (e) {
+        problems.push(`${url}: ${e.message}`);
+      }
+    }));
+    if (problems.length) this.typeError = `cannot load ${problems.join('; ')}`;
+    return registry;
   }
 
   refreshGraph(raw) {
@@ -155,11 +168,16 @@ export class Session {
 
   // ---------------------------------------------------------------- tools
 
-  /** Subscribe to a topic: onBatch([{bytes, time, seq}]). Returns {close()} at once. */
+  /**
+   * Subscribe to a topic: onBatch([{bytes, time, seq}]). Returns {close()} at
+   * once. The QoS matches the topic's publishers (as ros2 topic echo does).
+   */
   subscribe(topic, type, onBatch) {
     let seq = 0;
     let closed = false;
-    const pending = this.tools.subscribe({ topic, type, qos: {} }, (messages) => {
+    const entry = this.graph.topics.find((t) => t.name === topic);
+    const qos = subscriptionQos(entry ? entry.publisherQos : []);
+    const pending = this.tools.subscribe({ topic, type, qos }, (messages) => {
       if (closed) return;
       const now = performance.now();
       onBatch(messages.map((m) => ({ bytes: m.data, info: m.info, time: now, seq: ++seq })));

@@ -83,8 +83,13 @@ const context = await browser.newContext();
 async function openPage(url) {
   const page = await context.newPage();
   const console = [];
-  page.on('console', (m) => console.push(`${m.type()}: ${m.text()}`));
-  page.on('pageerror', (e) => console.push(`pageerror: ${e.message}`));
+  const note = (line) => {
+    console.push(line);
+    // BROWSER_DRIVER_LOG=1 streams the page's console to stderr (bench progress).
+    if (process.env.BROWSER_DRIVER_LOG) process.stderr.write(`${line}\n`);
+  };
+  page.on('console', (m) => note(`${m.type()}: ${m.text()}`));
+  page.on('pageerror', (e) => note(`pageerror: ${e.message}`));
   await page.goto(url);
   await page.waitForFunction('window.pageReady === true', null, { timeout: 30000 });
   return { page, console };

@@ -60,6 +60,26 @@ const CHECKS = {
     c.bus.unlock(c.runtime);
   },
 
+  /** Several non-blocking (main-thread) lockers all get the lock in turn: no lost wake-up. */
+  async async_lockers_all_proceed() {
+    const { bus, runtime, clients } = world(4);
+    assert.ok(bus.tryLock(clients[0].pid));
+    const order = [];
+    const waiters = [runtime, clients[1].pid, clients[2].pid, clients[3].pid].map(async (pid) => {
+      await bus.lockAsync(pid);
+      order.push(pid);
+      await new Promise((r) => setTimeout(r, 1));
+      bus.unlock(pid);
+    });
+    await new Promise((r) => setTimeout(r, 10));
+    assert.deepEqual(order, [], 'nobody gets a held lock');
+    bus.unlock(clients[0].pid);
+    const timeout = new Promise((_, reject) => setTimeout(() => reject(new Error(`stuck after ${JSON.stringify(order)}`)), 5000));
+    await Promise.race([Promise.all(waiters), timeout]);
+    assert.equal(order.length, 4);
+    assert.equal(Atomics.load(bus.i32, H.LOCK), 0);
+  },
+
   /** A process killed in the middle of a registry change leaves nothing half visible. */
   async killed_mid_mutation_leaves_nothing_half_visible() {
     const { bus, runtime, clients: [a, b] } = world(2);

@@ -157,8 +157,8 @@ def run_node(core, scenario, timeout=240):
 class Browser:
     """One headless Chromium (via browser_driver.mjs) for a test session."""
 
-    def __init__(self, routes, plain=()):
-        """Start the driver serving (prefix, folder) routes."""
+    def __init__(self, routes, plain=(), log=False):
+        """Start the driver serving (prefix, folder) routes (log: page console to stderr)."""
         args = []
         for prefix, folder in routes:
             args += ['--route', f'{prefix}={folder}']
@@ -167,7 +167,7 @@ class Browser:
         self.process = subprocess.Popen(
             ['node', str(HERE / 'browser_driver.mjs')] + args,
             stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True,
-            env=_env())
+            env=dict(_env(), BROWSER_DRIVER_LOG='1' if log else ''))
         hello = self.process.stdout.readline()
         assert hello, 'browser_driver.mjs exited at start-up'
         self.info = json.loads(hello)
@@ -204,12 +204,20 @@ class Browser:
 
 
 def browser_skip_reason():
-    """Tell why browser tests cannot run here, or return None."""
+    """
+    Tell why browser tests cannot run here, or return None.
+
+    Under CI (CI set) a missing Chromium or playwright-core is an error, so
+    that the browser half of the tests is never skipped silently.
+    """
+    reason = None
     if not Path(CHROMIUM).is_file() and not shutil.which(CHROMIUM):
-        return f'no Chromium at {CHROMIUM} (set COLCON_WASM_CHROMIUM)'
-    if not PLAYWRIGHT.is_dir():
-        return ('playwright-core is not installed: run `npm ci` in tests/js')
-    return None
+        reason = f'no Chromium at {CHROMIUM} (set COLCON_WASM_CHROMIUM)'
+    elif not PLAYWRIGHT.is_dir():
+        reason = 'playwright-core is not installed: run `npm ci` in tests/js'
+    if reason and os.environ.get('CI'):
+        raise AssertionError(f'browser tests cannot run under CI: {reason}')
+    return reason
 
 
 def results(run, name):

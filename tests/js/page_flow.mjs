@@ -201,6 +201,30 @@ async function demoFlow() {
     return { plotted_pixels: inked };
   });
 
+  await step(page, 'image-view-of-a-camera-topic', async () => {
+    await startFromSidebar(page, 'demo_nodes/camera');
+    await tab(page, 'topics');
+    const row = page.locator('tr[data-topic="/camera/image"]');
+    await row.waitFor({ timeout: STEP_TIMEOUT });
+    await row.click();
+    await page.locator('.topic-inspector button[data-subtab="image"].active').waitFor({ timeout: STEP_TIMEOUT });
+    await page.locator('.image-view .note', { hasText: '160×120 rgb8' }).waitFor({ timeout: STEP_TIMEOUT });
+    const pixels = await page.evaluate(() => {
+      const c = document.querySelector('canvas.image');
+      const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+      const at = (x, y) => Array.from(d.slice((y * c.width + x) * 4, (y * c.width + x) * 4 + 4));
+      let white = 0;
+      for (let i = 0; i < d.length; i += 4) if (d[i] === 255 && d[i + 1] === 255 && d[i + 2] === 255) white++;
+      return { size: [c.width, c.height], corner: at(0, 0), bottomRight: at(c.width - 1, c.height - 1), white };
+    });
+    // the gradient: red grows to the right, green downwards, blue 96; a 30x30 white square
+    if (pixels.size.join('x') !== '160x120') throw new Error(`canvas is ${pixels.size}`);
+    if (pixels.corner.join(',') !== '0,0,96,255') throw new Error(`top-left pixel is ${pixels.corner}`);
+    if (pixels.bottomRight.join(',') !== '253,252,96,255') throw new Error(`bottom-right pixel is ${pixels.bottomRight}`);
+    if (pixels.white !== 30 * 30) throw new Error(`${pixels.white} white pixels, expected the 30x30 square`);
+    return { white_pixels: pixels.white };
+  });
+
   await step(page, 'echo-keeps-up-with-1-kHz', async () => {
     await startFromSidebar(page, 'demo_nodes/oscillator', '--ros-args -r __node:=fast -r wave:=fast_wave -p rate:=1000');
     await tab(page, 'topics');
@@ -232,6 +256,105 @@ async function demoFlow() {
   await step(page, 'logs-of-one-process', async () => {
     await page.locator('.logtabs button[data-log^="listener"]').click();
     await page.locator('.logpane .logline', { hasText: 'I heard' }).first().waitFor({ timeout: STEP_TIMEOUT });
+  });
+  await page.close();
+
+  // the same page again in this browser (HTTP and code caches warm)
+  const again = await context.newPage();
+  again.on('pageerror', (e) => pageErrors.push(e.message));
+  await again.addInitScript(RECORD_LOGS);
+  await step(again, 'reopen-warm-first-publish', async () => {
+    await again.goto(`${options.url}?run=demo_nodes/talker`);
+    await waitForLog(again, 'talker', /Publishing: 'Hello World: 1'/);
+    const firstPublish = await again.evaluate(() => window.__launcherLogs.find((l) => /Publishing:/.test(l.text)).time);
+    return { first_publish_ms: Math.round(firstPublish) };
+  });
+  await context.close();
+}
+
+// The same flow on Humble's rclcpp examples (built by the rmw_wasm_cpp issue).
+async function humbleFlow() {
+  const context = await browser.newContext({ viewport: { width: 1440, height: 900 } });
+  const page = await context.newPage();
+  page.on('pageerror', (e) => pageErrors.push(e.message));
+  await page.addInitScript(RECORD_LOGS);
+  const pub = 'examples_rclcpp_minimal_publisher/publisher_member_function';
+  const sub = 'examples_rclcpp_minimal_subscriber/subscriber_member_function';
+
+  await step(page, 'humble-open-with-run-publisher-subscriber', async () => {
+    await page.goto(`${options.url}?run=${pub}&run=${sub}`);
+    await page.waitForFunction(() => document.body.dataset.state === 'ready', null, { timeout: STEP_TIMEOUT });
+    await waitForLog(page, 'publisher_member_function', /Publishing: 'Hello, world! \d+'/);
+    const firstPublish = await page.evaluate(() => window.__launcherLogs.find((l) => /Publishing:/.test(l.text)).time);
+    await waitForLog(page, 'subscriber_member_function', /I heard: 'Hello, world! \d+'/);
+    return { first_publish_ms: Math.round(firstPublish) };
+  });
+
+  await step(page, 'humble-nodes-topics-echo', async () => {
+    await tab(page, 'nodes');
+    await page.locator('tr[data-node="/minimal_publisher"]').waitFor({ timeout: STEP_TIMEOUT });
+    await page.locator('tr[data-node="/minimal_subscriber"]').waitFor({ timeout: STEP_TIMEOUT });
+    await tab(page, 'topics');
+    const row = page.locator('tr[data-topic="/topic"]');
+    await row.waitFor({ timeout: STEP_TIMEOUT });
+    const cells = await row.locator('td').allTextContents();
+    if (cells[1] !== 'std_msgs/msg/String') throw new Error(`/topic row is ${JSON.stringify(cells)}`);
+    await row.click();
+    await page.waitForFunction(() => /data: 'Hello, world! \d+'/.test(
+      document.querySelector('[data-echo="/topic"] .echo-msg pre')?.textContent || ''), null, { timeout: STEP_TIMEOUT });
+  });
+
+  await step(page, 'humble-publish-reaches-the-subscriber', async () => {
+    await page.locator('.topic-inspector button[data-subtab="publish"]').click();
+    await page.locator('[data-publish="/topic"] input[data-field="data"]').fill('from the page');
+    await page.locator('[data-publish="/topic"] button.primary').click();
+    await waitForLog(page, 'subscriber_member_function', /I heard: 'from the page'/);
+  });
+
+  await step(page, 'humble-service-call', async () => {
+    await startFromSidebar(page, 'examples_rclcpp_minimal_service/service_main');
+    await tab(page, 'services');
+    const row = page.locator('tr[data-service="/add_two_ints"]');
+    await row.waitFor({ timeout: STEP_TIMEOUT });
+    await row.click();
+    await page.locator('[data-call="/add_two_ints"] input[data-field="a"]').fill('2');
+    await page.locator('[data-call="/add_two_ints"] input[data-field="b"]').fill('40');
+    await page.locator('[data-call="/add_two_ints"] button.primary').click();
+    await page.waitForFunction(() => /sum: 42/.test(document.querySelector('[data-response="/add_two_ints"]')?.textContent || ''),
+      null, { timeout: STEP_TIMEOUT });
+  });
+
+  await step(page, 'humble-action-goal-with-feedback', async () => {
+    await startFromSidebar(page, 'examples_rclcpp_minimal_action_server/action_server_member_functions');
+    await tab(page, 'actions');
+    const row = page.locator('tr[data-action="/fibonacci"]');
+    await row.waitFor({ timeout: STEP_TIMEOUT });
+    await row.click();
+    await page.locator('[data-goal="/fibonacci"] input[data-field="order"]').fill('5');
+    await page.locator('[data-goal="/fibonacci"] button.primary').click();
+    await page.waitForFunction(() => /SUCCEEDED/.test(document.querySelector('[data-result="/fibonacci"]')?.textContent || ''),
+      null, { timeout: STEP_TIMEOUT });
+    const text = await page.locator('[data-goal="/fibonacci"]').textContent();
+    if (!/feedback #\d+/.test(text)) throw new Error('no feedback was shown');
+    const result = await page.locator('[data-result="/fibonacci"] pre').textContent();
+    if (!/sequence:\n- 0\n- 1\n- 1\n- 2\n- 3\n- 5/.test(result)) throw new Error(`unexpected result: ${result}`);
+  });
+
+  await step(page, 'humble-parameters-list-get-set', async () => {
+    await tab(page, 'parameters');
+    await page.locator('[data-view="parameters"] select').selectOption('/minimal_publisher');
+    const input = page.locator('[data-params="/minimal_publisher"] input[data-param="use_sim_time"]');
+    await input.waitFor({ timeout: STEP_TIMEOUT });
+    if ((await input.inputValue()) !== 'false') throw new Error(`use_sim_time is ${await input.inputValue()}`);
+    await input.fill('true');
+    await input.press('Enter');
+    await page.locator('[data-params="/minimal_publisher"] .ok-text', { hasText: 'set' }).waitFor({ timeout: STEP_TIMEOUT });
+  });
+
+  await step(page, 'humble-stop-updates-the-graph', async () => {
+    await page.locator('.proc[data-proc^="publisher_member_function"] button.stop').click();
+    await tab(page, 'nodes');
+    await page.locator('tr[data-node="/minimal_publisher"]').waitFor({ state: 'detached', timeout: STEP_TIMEOUT });
   });
   await context.close();
 }
@@ -265,6 +388,7 @@ async function notIsolatedFlow() {
 try {
   if (options.flow === 'demo' || !options.flow) await demoFlow();
   if (options.flow === 'isolation' || !options.flow) await notIsolatedFlow();
+  if (options.flow === 'humble') await humbleFlow();
 } finally {
   await browser.close();
 }

@@ -10,7 +10,7 @@ import { test } from 'node:test';
 
 import { TypeRegistry } from '../../packages/wasm_js/src/cdr.mjs';
 import { asNumber, getPath, numericPaths } from '../../packages/wasm_js/src/tools/fields.mjs';
-import { compressedMimeType, ImageError, imageToRgba } from '../../packages/wasm_js/src/tools/image.mjs';
+import { compressedMimeType, ImageError, imageKind, imageToRgba } from '../../packages/wasm_js/src/tools/image.mjs';
 import { formatBandwidth, TopicStats } from '../../packages/wasm_js/src/tools/stats.mjs';
 import { formatYaml, parseYaml, YamlError } from '../../packages/wasm_js/src/tools/yaml.mjs';
 
@@ -125,4 +125,75 @@ test('imageToRgba converts the common encodings', () => {
   assert.equal(compressedMimeType('jpeg'), 'image/jpeg');
   assert.equal(compressedMimeType('rgb8; png compressed bgr8'), 'image/png');
   assert.throws(() => compressedMimeType('tiff'), /'tiff' is not shown/);
+});
+
+test('actionsOf finds actions by their hidden send_goal services', async () => {
+  const { actionsOf } = await import('../../packages/wasm_js/src/tools/ros_clients.mjs');
+  assert.deepEqual(actionsOf([
+    { name: '/fibonacci/_action/send_goal', types: ['example_interfaces/action/Fibonacci_SendGoal'], servers: 1, clients: 0 },
+    { name: '/fibonacci/_action/get_result', types: ['example_interfaces/action/Fibonacci_GetResult'], servers: 1, clients: 0 },
+    { name: '/add_two_ints', types: ['example_interfaces/srv/AddTwoInts'], servers: 1, clients: 0 },
+  ]), [{ name: '/fibonacci', type: 'example_interfaces/action/Fibonacci', servers: 1, clients: 0 }]);
+});
+
+test('parameter values convert as ros2 param set infers them', async () => {
+  const { parameterValue, toParameterValue, ParameterType } = await import('../../packages/wasm_js/src/tools/ros_clients.mjs');
+  assert.deepEqual(toParameterValue(true), { type: ParameterType.BOOL, bool_value: true });
+  assert.deepEqual(toParameterValue(5), { type: ParameterType.INTEGER, integer_value: 5n });
+  assert.deepEqual(toParameterValue(2.5), { type: ParameterType.DOUBLE, double_value: 2.5 });
+  assert.deepEqual(toParameterValue('x'), { type: ParameterType.STRING, string_value: 'x' });
+  assert.deepEqual(toParameterValue([1, 2]), { type: ParameterType.INTEGER_ARRAY, integer_array_value: [1n, 2n] });
+  assert.deepEqual(toParameterValue([1.5, 2]), { type: ParameterType.DOUBLE_ARRAY, double_array_value: [1.5, 2] });
+  assert.deepEqual(toParameterValue(['a']), { type: ParameterType.STRING_ARRAY, string_array_value: ['a'] });
+  assert.throws(() => toParameterValue([1, 'a']), /only bools, only integers, only numbers or only strings/);
+  assert.throws(() => toParameterValue({ a: 1 }), /cannot hold a mapping/);
+  assert.deepEqual(parameterValue({ type: 8, double_array_value: Float64Array.of(1, 2) }), { type: 'double[]', value: [1, 2] });
+  assert.deepEqual(parameterValue({ type: 4, string_value: 'hi' }), { type: 'string', value: 'hi' });
+});
+
+test('graphModel: nodes with endpoints, counts, hidden names, the tools process left out', async () => {
+  const { graphModel } = await import('../../packages/wasm_js/src/tools/graph.mjs');
+  const ep = (node, pid, type) => ({ node, namespace: '/', type, pid });
+  const model = graphModel({
+    nodes: [{ name: 'talker', namespace: '/', pid: 2, process: 'talker-1' },
+      { name: 'wasm_js_tools_9', namespace: '/', pid: 9, process: 'tools' }],
+    topics: [
+      { name: '/chatter', types: ['std_msgs/msg/String'], publishers: [ep('talker', 2, 'std_msgs/msg/String')],
+        subscriptions: [ep('wasm_js_tools_9', 9, 'std_msgs/msg/String')] },
+      { name: '/only_tools', types: ['std_msgs/msg/String'], publishers: [ep('wasm_js_tools_9', 9, 'x')], subscriptions: [] },
+      { name: '/fib/_action/feedback', types: ['a/action/F_FeedbackMessage'], publishers: [ep('talker', 2, 'x')], subscriptions: [] },
+    ],
+    services: [{ name: '/talker/list_parameters', types: ['rcl_interfaces/srv/ListParameters'],
+      servers: [ep('talker', 2, 'rcl_interfaces/srv/ListParameters')], clients: [] }],
+  }, { toolsPid: 9 });
+  assert.deepEqual(model.nodes.map((n) => [n.fqn, n.process]), [['/talker', 'talker-1']]);
+  assert.deepEqual(model.topics.map((t) => [t.name, t.publishers, t.subscribers, t.hidden]),
+    [['/chatter', 1, 0, false], ['/fib/_action/feedback', 1, 0, true]]);
+  assert.deepEqual(model.nodes[0].services, [{ name: '/talker/list_parameters', type: 'rcl_interfaces/srv/ListParameters' }]);
+});
+
+test('imageKind knows image types and messages of their shape', () => {
+  const shaped = new TypeRegistry([{ schema: 1, package: 'p', messages: {
+    'p/msg/Frame': { fields: [{ name: 'height', type: 'uint32' }, { name: 'width', type: 'uint32' },
+      { name: 'encoding', type: 'string' }, { name: 'step', type: 'uint32' }, { name: 'data', type: 'uint8', sequence: true }] },
+    'p/msg/Jpeg': { fields: [{ name: 'format', type: 'string' }, { name: 'data', type: 'uint8', sequence: true }] },
+    'p/msg/Other': { fields: [{ name: 'data', type: 'uint8', sequence: true }] },
+  } }]);
+  assert.equal(imageKind(shaped, 'sensor_msgs/msg/Image'), 'raw');
+  assert.equal(imageKind(shaped, 'sensor_msgs/msg/CompressedImage'), 'compressed');
+  assert.equal(imageKind(shaped, 'p/msg/Frame'), 'raw');
+  assert.equal(imageKind(shaped, 'p/msg/Jpeg'), 'compressed');
+  assert.equal(imageKind(shaped, 'p/msg/Other'), null);
+  assert.equal(imageKind(shaped, 'p/msg/Unknown'), null);
+});
+
+test('subscriptionQos hears every publisher, as ros2 topic echo chooses', async () => {
+  const { subscriptionQos } = await import('../../packages/wasm_js/src/tools/graph.mjs');
+  const reliable = { reliability: 'reliable', durability: 'volatile' };
+  const sensor = { reliability: 'best_effort', durability: 'volatile' };
+  const latched = { reliability: 'reliable', durability: 'transient_local' };
+  assert.deepEqual(subscriptionQos([]), { history: 'keep_last', depth: 100, reliability: 'reliable', durability: 'volatile' });
+  assert.equal(subscriptionQos([reliable, sensor]).reliability, 'best_effort');
+  assert.equal(subscriptionQos([latched]).durability, 'transient_local');
+  assert.equal(subscriptionQos([latched, reliable]).durability, 'volatile');
 });

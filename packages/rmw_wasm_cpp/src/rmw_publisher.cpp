@@ -75,6 +75,11 @@ rmw_publisher_t * rmw_create_publisher(
   if (!rmw_wasm_cpp::check_topic_name(topic_name, *qos_profile)) {
     return nullptr;
   }
+  if (!rmw_wasm_cpp::check_network_flow_requirement(
+      publisher_options->require_unique_network_flow_endpoints, "publisher", topic_name))
+  {
+    return nullptr;
+  }
   std::string error;
   if (!rmw_wasm_cpp::is_valid_qos(*qos_profile, &error)) {
     RMW_SET_ERROR_MSG_WITH_FORMAT_STRING("publisher on '%s': %s", topic_name, error.c_str());

@@ -85,6 +85,11 @@ rmw_subscription_t * rmw_create_subscription(
   if (!rmw_wasm_cpp::check_topic_name(topic_name, *qos_policies)) {
     return nullptr;
   }
+  if (!rmw_wasm_cpp::check_network_flow_requirement(
+      subscription_options->require_unique_network_flow_endpoints, "subscription", topic_name))
+  {
+    return nullptr;
+  }
   std::string error;
   if (!rmw_wasm_cpp::is_valid_qos(*qos_policies, &error)) {
     RMW_SET_ERROR_MSG_WITH_FORMAT_STRING("subscription on '%s': %s", topic_name, error.c_str());

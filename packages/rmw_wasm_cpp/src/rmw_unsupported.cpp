@@ -142,8 +142,10 @@ rmw_ret_t rmw_publisher_get_network_flow_endpoints(
   RMW_CHECK_TYPE_IDENTIFIERS_MATCH(
     publisher, publisher->implementation_identifier, kIdentifier,
     return RMW_RET_INCORRECT_RMW_IMPLEMENTATION);
-  (void)allocator;
-  (void)network_flow_endpoint_array;
+  // Leave a valid empty array, so that the caller's cleanup (rcl finalizes it) succeeds.
+  if (network_flow_endpoint_array != nullptr && network_flow_endpoint_array->size == 0) {
+    network_flow_endpoint_array->allocator = allocator;
+  }
   RMW_SET_ERROR_MSG(kNoNetworkFlows);
   return RMW_RET_UNSUPPORTED;
 }
@@ -156,8 +158,10 @@ rmw_ret_t rmw_subscription_get_network_flow_endpoints(
   RMW_CHECK_TYPE_IDENTIFIERS_MATCH(
     subscription, subscription->implementation_identifier, kIdentifier,
     return RMW_RET_INCORRECT_RMW_IMPLEMENTATION);
-  (void)allocator;
-  (void)network_flow_endpoint_array;
+  // Leave a valid empty array, so that the caller's cleanup (rcl finalizes it) succeeds.
+  if (network_flow_endpoint_array != nullptr && network_flow_endpoint_array->size == 0) {
+    network_flow_endpoint_array->allocator = allocator;
+  }
   RMW_SET_ERROR_MSG(kNoNetworkFlows);
   return RMW_RET_UNSUPPORTED;
 }

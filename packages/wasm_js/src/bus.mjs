@@ -238,9 +238,9 @@ export class Bus {
         if (Atomics.compareExchange(i32, H.LOCK, v, v | LOCK_CONTENDED) !== v) continue;
         v |= LOCK_CONTENDED;
       }
-      // The timeout only bounds how long a lock held by a dead process goes
-      // unnoticed when no runtime cleans up; normally unlock() wakes us.
-      Atomics.wait(i32, H.LOCK, v, 500);
+      // The owner's unlock() wakes us; if the owner dies, the runtime's
+      // cleanup steals the lock and its unlock() wakes us.
+      Atomics.wait(i32, H.LOCK, v);
     }
   }
 
@@ -261,15 +261,22 @@ export class Bus {
    * @returns {Promise<void>}
    */
   async lockAsync(pid) {
+    if (this.tryLock(pid)) return;
+    const i32 = this.i32;
     for (;;) {
-      if (this.tryLock(pid)) return;
-      const v = Atomics.load(this.i32, H.LOCK);
-      if (v === 0) continue;
-      if (!(v & LOCK_CONTENDED)) {
-        Atomics.compareExchange(this.i32, H.LOCK, v, v | LOCK_CONTENDED);
+      let v = Atomics.load(i32, H.LOCK);
+      // Once we may have waited, take the lock marked contended, like lock():
+      // other waiters may still sleep, and our unlock() must wake one of them.
+      if (v === 0) {
+        if (Atomics.compareExchange(i32, H.LOCK, 0, pid | LOCK_CONTENDED) === 0) return;
         continue;
       }
-      const r = Atomics.waitAsync(this.i32, H.LOCK, v, 500);
+      if (this._stealIfOwnerDead(v, pid | LOCK_CONTENDED)) return;
+      if (!(v & LOCK_CONTENDED)) {
+        if (Atomics.compareExchange(i32, H.LOCK, v, v | LOCK_CONTENDED) !== v) continue;
+        v |= LOCK_CONTENDED;
+      }
+      const r = Atomics.waitAsync(i32, H.LOCK, v);
       if (r.async) await r.value;
     }
   }

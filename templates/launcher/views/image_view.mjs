@@ -47,6 +47,8 @@ export class ImageView {
     if (this.canvas.width !== width || this.canvas.height !== height) {
       this.canvas.width = width;
       this.canvas.height = height;
+      // small images are shown enlarged (pixelated), large ones fit the card
+      this.canvas.style.width = `${Math.min(960, Math.max(320, width))}px`;
     }
   }
 }

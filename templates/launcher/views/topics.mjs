@@ -8,7 +8,7 @@
 
 import { formatYaml } from '/wasm_js/tools/yaml.mjs';
 import { formatBandwidth, TopicStats } from '/wasm_js/tools/stats.mjs';
-import { COMPRESSED_IMAGE_TYPES, IMAGE_TYPES } from '/wasm_js/tools/image.mjs';
+import { imageKind } from '/wasm_js/tools/image.mjs';
 import { h, setChildren } from '../dom.mjs';
 import { ImageView } from './image_view.mjs';
 import { MessageForm } from './message_form.mjs';
@@ -78,6 +78,7 @@ class TopicInspector {
     this.plot = null;
     this.imageView = null;
     this.decodeError = null;
+    this.image = imageKind(this.registry, this.type);
 
     this.counter = h('strong', {}, '0');
     this.rateText = h('strong', {}, '–');
@@ -86,7 +87,7 @@ class TopicInspector {
     this.statsGrid = h('div.stats');
     this.body = h('div');
     const tabs = [['echo', 'Echo'], ['rate', 'Rate'], ['plot', 'Plot']];
-    if (IMAGE_TYPES.has(this.type) || COMPRESSED_IMAGE_TYPES.has(this.type)) tabs.push(['image', 'Image']);
+    if (this.image) tabs.push(['image', 'Image']);
     tabs.push(['publish', 'Publish']);
     this.tabButtons = tabs.map(([id, label]) => h('button', {
       dataset: { subtab: id }, onclick: () => this.show(id),
@@ -96,7 +97,7 @@ class TopicInspector {
       h('div.subtabs', {}, this.tabButtons),
       h('div.echo-bar', {}, 'received ', this.counter, ' · rate ', this.rateText, this.pauseButton),
       this.body);
-    this.show(IMAGE_TYPES.has(this.type) || COMPRESSED_IMAGE_TYPES.has(this.type) ? 'image' : 'echo');
+    this.show(this.image ? 'image' : 'echo');
     this.subscription = session.subscribe(topic.name, this.type, (batch) => this.onBatch(batch));
     this.timer = setInterval(() => this.renderStats(), 500);
   }
@@ -120,7 +121,7 @@ class TopicInspector {
       this.plot = new Plot(this.registry, this.type);
       setChildren(this.body, this.plot.element);
     } else if (tab === 'image') {
-      this.imageView = this.imageView || new ImageView(COMPRESSED_IMAGE_TYPES.has(this.type));
+      this.imageView = this.imageView || new ImageView(this.image === 'compressed');
       setChildren(this.body, this.imageView.element);
     } else if (tab === 'publish') {
       if (!this.canDecode) { setChildren(this.body, this.noTypes()); return; }

@@ -820,6 +820,7 @@ int role_deadline()
   auto lost = must(Event::make(pub, EventType::kLivelinessLost), "liveliness lost");
   auto changed = must(Event::make(sub, EventType::kLivelinessChanged), "liveliness changed");
   auto p = make_payload(0, 1, 8);
+  auto published = Clock::now();
   pub->publish(p.data(), p.size());
   // No timer anywhere: the wait times out at the next deadline by itself.
   std::vector<WaitItem> items{
@@ -837,9 +838,9 @@ int role_deadline()
   lost->take(&sl, &t);
   changed->take(&sc, &t);
   out(
-    "RESULT first_event_ms=%.1f offered=%" PRId64 " requested=%" PRId64 " liveliness_lost=%" PRId64
-    " alive=%d not_alive=%d", first_ms, so.total_count, sr.total_count, sl.total_count,
-    sc.alive_count, sc.not_alive_count);
+    "RESULT first_event_ms=%.1f taken_ms=%.1f offered=%" PRId64 " requested=%" PRId64
+    " liveliness_lost=%" PRId64 " alive=%d not_alive=%d", first_ms, ms_since(published),
+    so.total_count, sr.total_count, sl.total_count, sc.alive_count, sc.not_alive_count);
   pub->assert_liveliness();
   changed->take(&sc, &t);
   out("RESULT after_assert_alive=%d", sc.alive_count);

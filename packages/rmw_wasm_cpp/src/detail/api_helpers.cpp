@@ -51,6 +51,20 @@ bool check_topic_name(const char * topic_name, const rmw_qos_profile_t & qos)
   return true;
 }
 
+bool check_network_flow_requirement(
+  rmw_unique_network_flow_endpoints_requirement_t requirement, const char * what,
+  const char * topic_name)
+{
+  if (requirement != RMW_UNIQUE_NETWORK_FLOW_ENDPOINTS_STRICTLY_REQUIRED) {
+    return true;
+  }
+  RMW_SET_ERROR_MSG_WITH_FORMAT_STRING(
+    "cannot create a %s on '%s' that strictly requires unique network flow endpoints: "
+    "rmw_wasm_cpp nodes talk through shared memory and have no network flows (use "
+    "RMW_UNIQUE_NETWORK_FLOW_ENDPOINTS_OPTIONALLY_REQUIRED or NOT_REQUIRED)", what, topic_name);
+  return false;
+}
+
 /// The scratch buffer of an allocation made by rmw_init_*_allocation, or the thread's.
 ScratchBuffer & buffer_of(const char * implementation_identifier, void * data)
 {

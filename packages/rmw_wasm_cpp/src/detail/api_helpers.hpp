@@ -27,6 +27,12 @@ namespace rmw_wasm_cpp
 /// unless the QoS avoids ROS namespace conventions); sets the rmw error when it is not.
 bool check_topic_name(const char * topic_name, const rmw_qos_profile_t & qos);
 
+/// Refuse an endpoint that strictly requires unique network flow endpoints (there are none
+/// on a shared-memory bus); sets the rmw error. NOT_REQUIRED and OPTIONALLY_REQUIRED pass.
+bool check_network_flow_requirement(
+  rmw_unique_network_flow_endpoints_requirement_t requirement, const char * what,
+  const char * topic_name);
+
 /// The scratch buffer of an allocation made by rmw_init_*_allocation, or the thread's.
 ScratchBuffer & buffer_of(const char * implementation_identifier, void * data);
 

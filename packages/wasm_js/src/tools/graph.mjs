@@ -50,7 +50,11 @@ export function graphModel(raw, { toolsPid } = {}) {
     const publishers = attach(t.publishers, 'publishers', t.name);
     const subscribers = attach(t.subscriptions, 'subscriptions', t.name);
     if (publishers + subscribers === 0) continue;
-    model.topics.push({ name: t.name, types: t.types, publishers, subscribers, hidden: isHidden(t.name) });
+    const publisherQos = t.publishers.filter((e) => toolsPid === undefined || e.pid !== toolsPid)
+      .map((e) => e.qos).filter(Boolean);
+    model.topics.push({
+      name: t.name, types: t.types, publishers, subscribers, hidden: isHidden(t.name), publisherQos,
+    });
   }
   for (const s of raw.services || []) {
     const servers = attach(s.servers, 'services', s.name);
@@ -65,4 +69,20 @@ export function graphModel(raw, { toolsPid } = {}) {
   model.services.sort(byName);
   model.actions = actionsOf(model.services);
   return model;
+}
+
+/**
+ * The QoS a tool subscribes with to hear every publisher of a topic, as
+ * `ros2 topic echo` chooses it: BEST_EFFORT when a publisher is best effort,
+ * TRANSIENT_LOCAL when every publisher keeps its history for late joiners,
+ * else RELIABLE and VOLATILE; KEEP_LAST with a depth for bursts.
+ */
+export function subscriptionQos(publisherQos = [], depth = 100) {
+  const all = (field, value) => publisherQos.length > 0 && publisherQos.every((q) => q[field] === value);
+  return {
+    history: 'keep_last',
+    depth,
+    reliability: publisherQos.some((q) => q.reliability === 'best_effort') ? 'best_effort' : 'reliable',
+    durability: all('durability', 'transient_local') ? 'transient_local' : 'volatile',
+  };
 }

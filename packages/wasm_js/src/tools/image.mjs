@@ -88,3 +88,20 @@ export function compressedMimeType(format) {
   if (f.includes('webp')) return 'image/webp';
   throw new ImageError(`compressed image format '${format}' is not shown (shown: jpeg, png, webp)`);
 }
+
+/**
+ * Whether messages of a type are images: 'raw' for sensor_msgs/Image (or a
+ * message with its fields: height, width, encoding, step, data as uint8[]),
+ * 'compressed' for sensor_msgs/CompressedImage (or format + data), else null.
+ */
+export function imageKind(registry, type) {
+  if (IMAGE_TYPES.has(type)) return 'raw';
+  if (COMPRESSED_IMAGE_TYPES.has(type)) return 'compressed';
+  if (!registry || !type || !registry.has(type)) return null;
+  const fields = new Map(registry.message(type).fields.map((f) => [f.name, f]));
+  const bytes = (f) => f && f.sequence && (f.type === 'uint8' || f.type === 'byte');
+  const is = (name, t) => fields.has(name) && fields.get(name).type === t && !fields.get(name).sequence;
+  if (bytes(fields.get('data')) && is('height', 'uint32') && is('width', 'uint32') && is('encoding', 'string') && is('step', 'uint32')) return 'raw';
+  if (bytes(fields.get('data')) && is('format', 'string')) return 'compressed';
+  return null;
+}

@@ -20,7 +20,7 @@ import { pathToFileURL } from 'node:url';
 
 import { TypeRegistry } from '../cdr.mjs';
 import { Runtime } from '../runtime.mjs';
-import { graphModel } from './graph.mjs';
+import { graphModel, subscriptionQos } from './graph.mjs';
 import { formatYaml } from './yaml.mjs';
 
 const out = (line) => process.stdout.write(`${line}\n`);
@@ -52,7 +52,7 @@ function echoTopic(runtime, tools, registry, topic, stopping) {
       subscription = { close() {} };
       return;
     }
-    subscription = tools.subscribe({ topic, type, qos: {} }, (messages) => {
+    subscription = tools.subscribe({ topic, type, qos: subscriptionQos(entry.publisherQos) }, (messages) => {
       for (const m of messages) {
         let text;
         try {

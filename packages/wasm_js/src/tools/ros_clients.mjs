@@ -10,9 +10,12 @@
  * Both take a `bus` with two operations, which the page and the Node tools
  * give them on top of the wasm_js tools process:
  *   bus.call(service, type, requestBytes, timeoutMs) -> Promise<Uint8Array>
- *   bus.subscribe(topic, type, onBatch([{bytes, time}])) -> {close()}
+ *   bus.subscribe(topic, type, onBatch([{bytes, time}])) -> {close(), ready?: Promise}
  * and a TypeRegistry (cdr.mjs) holding the needed type descriptions.
  */
+
+/** The longest setTimeout delay: how long a goal's result is waited for. */
+const RESULT_TIMEOUT_MS = 2 ** 31 - 1;
 
 /** rcl_action goal status codes (action_msgs/msg/GoalStatus). */
 export const GoalStatus = Object.freeze({
@@ -89,6 +92,7 @@ export class ActionClient {
     });
     let response;
     try {
+      if (feedback.ready) await feedback.ready;  // hear the first feedback too
       const request = registry.encode(spec.send_goal.request, { goal_id: { uuid }, goal });
       const bytes = await bus.call(`${name}/_action/send_goal`, `${type}_SendGoal`, request, timeoutMs);
       response = registry.decode(spec.send_goal.response, bytes);
@@ -104,8 +108,8 @@ export class ActionClient {
     const result = (async () => {
       try {
         const request = registry.encode(spec.get_result.request, { goal_id: { uuid } });
-        // the server answers when the goal ends: no deadline
-        const bytes = await bus.call(`${name}/_action/get_result`, `${type}_GetResult`, request, -1);
+        // the server answers when the goal ends: wait as long as a timer can (24.8 days)
+        const bytes = await bus.call(`${name}/_action/get_result`, `${type}_GetResult`, request, RESULT_TIMEOUT_MS);
         const value = registry.decode(spec.get_result.response, bytes);
         return { status: value.status, statusText: GoalStatus[value.status] || String(value.status), result: value.result };
       } finally {

@@ -79,6 +79,21 @@ int listener(const std::vector<std::string> &)
   return 0;
 }
 
+// Like listener, spun by a MultiThreadedExecutor with 4 threads (for the idle CPU check).
+int mt_listener(const std::vector<std::string> &)
+{
+  auto node = std::make_shared<rclcpp::Node>("mt_listener");
+  auto subscription = node->create_subscription<std_msgs::msg::String>(
+    "chatter", 10, [&](const std_msgs::msg::String & message) {
+      RCLCPP_INFO(node->get_logger(), "HEARD %s", message.data.c_str());
+    });
+  rclcpp::executors::MultiThreadedExecutor executor(rclcpp::ExecutorOptions(), 4);
+  executor.add_node(node);
+  RCLCPP_INFO(node->get_logger(), "SPINNING with %zu threads", executor.get_number_of_threads());
+  executor.spin();
+  return 0;
+}
+
 // Reads a parameter of another node through its parameter services.
 int param_reader(const std::vector<std::string> & args)
 {
@@ -350,7 +365,8 @@ int main(int argc, char ** argv)
     const char * name;
     std::function<int(const std::vector<std::string> &)> run;
   } scenarios[] = {
-    {"param_talker", param_talker}, {"listener", listener}, {"param_reader", param_reader},
+    {"param_talker", param_talker}, {"listener", listener}, {"mt_listener", mt_listener},
+    {"param_reader", param_reader},
     {"wrong_type", wrong_type}, {"no_server", no_server}, {"invalid_topic", invalid_topic},
     {"oversize", oversize}, {"clock", clock}, {"sim_time", sim_time},
     {"hold_server", hold_server}, {"add_server", add_server}, {"caller", caller},

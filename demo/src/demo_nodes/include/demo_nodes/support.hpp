@@ -176,6 +176,13 @@ public:
     bytes_.push_back(0);
   }
 
+  /// A uint8[] sequence: uint32 count, then the bytes.
+  void put_bytes(const std::vector<uint8_t> & data)
+  {
+    put<uint32_t>(static_cast<uint32_t>(data.size()));
+    bytes_.insert(bytes_.end(), data.begin(), data.end());
+  }
+
   const std::vector<uint8_t> & bytes() const {return bytes_;}
 
 private:
