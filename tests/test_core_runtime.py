@@ -123,3 +123,31 @@ def test_log_severity_is_read_through_ansi_colours():
         '["[INFO] [1.5] [n]: hello","INFO"]',
         '["plain","ERROR"]',
     ]
+
+
+def _lines(run, name):
+    """Get the log lines of process `name` without their severity."""
+    assert run['ok'], harness.explain(run)
+    return [line.split(' ', 1)[1]
+            for line in run['processes'][name]['lines']]
+
+
+@pytest.mark.parametrize('platform', ['node', 'chromium'])
+def test_stdin_files_and_ros_namespace_reach_the_executable(platform):
+    run = harness.run(platform, 'io')
+    why = harness.explain(run)
+    io = _lines(run, 'io')
+    assert 'STDIN 2|3|q|' in io, why
+    assert 'FILE talker:|  ros__parameters:|    greeting: hi|' in io, why
+    # ROS_NAMESPACE becomes a namespace remap (a leading '/' added) ...
+    assert io[-5:-2] == ['ARG 2 --ros-args', 'ARG 3 -r',
+                         'ARG 4 __ns:=/robot1'], why
+    ns = _lines(run, 'io_ns')
+    assert 'ARG 4 __ns:=/robot2' in ns, why
+    # ... unless the arguments remap __ns themselves; no stdin: end of file
+    own = _lines(run, 'io_own_ns')
+    assert [line for line in own if '__ns:=' in line] == [
+        'ARG 4 __ns:=/mine'], why
+    assert 'STDIN ' in own, why
+    for name in ('io', 'io_ns', 'io_own_ns'):
+        assert harness.exit_of(run, name)['code'] == 0, why

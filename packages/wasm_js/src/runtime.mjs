@@ -55,6 +55,28 @@ export function severityOf(stream, text) {
   return stream === 'stderr' ? 'ERROR' : 'INFO';
 }
 
+/**
+ * Check the `files` option of spawn(): absolute paths to text or bytes.
+ * @param {Object<string, string|Uint8Array>|undefined} files
+ * @param {string} name the executable, for messages
+ * @returns {Object<string, string|Uint8Array>}
+ */
+function checkedFiles(files, name) {
+  const out = {};
+  for (const [path, content] of Object.entries(files || {})) {
+    if (!path.startsWith('/') || path.split('/').includes('..')) {
+      throw new BusError(Code.INVALID_ARGUMENT,
+        `spawn '${name}': file path '${path}' must be absolute and must not contain '..'`);
+    }
+    if (typeof content !== 'string' && !(content instanceof Uint8Array)) {
+      throw new BusError(Code.INVALID_ARGUMENT,
+        `spawn '${name}': content of file '${path}' must be a string or a Uint8Array`);
+    }
+    out[path] = content;
+  }
+  return out;
+}
+
 function gidHex(words) {
   return Array.from(new Uint8Array(Int32Array.from(words).buffer), (b) => b.toString(16).padStart(2, '0')).join('');
 }
@@ -257,6 +279,10 @@ export class Runtime {
    * @param {function({code: number|null, crashed: boolean, reason: string}): void} [spec.onExit]
    * @param {WebAssembly.Module} [spec.wasmModule] an already compiled module
    * @param {boolean} [spec.shareModule=true] compile the .wasm once and share it between spawns
+   * @param {string} [spec.stdin] text the executable reads as its standard input (then end of file);
+   *   without it standard input is empty
+   * @param {Object<string, string|Uint8Array>} [spec.files] files written into the executable's
+   *   file system before main() runs (absolute path → content), e.g. a `--params-file`
    * @returns {Promise<NodeProcess>}
    */
   async spawn(spec) {
@@ -274,6 +300,8 @@ export class Runtime {
     const args = (spec.args || []).map(String);
     const env = {};
     for (const [k, v] of Object.entries(spec.env || {})) env[k] = String(v);
+    const stdin = spec.stdin === undefined || spec.stdin === null ? null : String(spec.stdin);
+    const files = checkedFiles(spec.files, name);
     let wasmModule = spec.wasmModule || null;
     if (!wasmModule && spec.shareModule !== false) {
       try {
@@ -301,7 +329,7 @@ export class Runtime {
       proc._finish({ code, crashed: code !== 0, reason: code !== 0 ? `worker exited with code ${code}` : '' });
     });
     worker.postMessage({
-      type: ToHost.START, bus: this.bus.sab, pid, url, wasmUrl, glueFile, args, env, name, wasmModule,
+      type: ToHost.START, bus: this.bus.sab, pid, url, wasmUrl, glueFile, args, env, name, wasmModule, stdin, files,
       busModuleUrl: siblingUrl('bus_client.mjs'), hostModuleUrl: siblingUrl('host_common.mjs'),
     });
     return proc;
