@@ -80,14 +80,19 @@ def install(tmp_path_factory):
     (runtime / 'index.mjs.gz').write_bytes(gzip.compress(b'precompressed'))
     (runtime / 'sub').mkdir()
     os.symlink('/etc/hostname', runtime / 'link_out.mjs')
-    return base, runtime
+    (runtime / 'cdr.mjs').write_text('// stale: from an old build\n')
+    page_modules = root / 'page_modules'
+    (page_modules / 'tools').mkdir(parents=True)
+    (page_modules / 'cdr.mjs').write_text('// the page version\n')
+    (page_modules / 'tools' / 'deep.mjs').write_text('export const z = 4;\n')
+    return base, runtime, page_modules
 
 
 @pytest.fixture(scope='module')
 def server(install):
-    base, runtime = install
+    base, runtime, page_modules = install
     srv = make_server(InstallSpace(base), host='127.0.0.1', port=0, launcher_dir=LAUNCHER,
-                      runtime_dir=runtime, runtime_origin='test')
+                      runtime_dir=runtime, runtime_origin='test', page_modules_dir=page_modules)
     thread = threading.Thread(target=srv.serve_forever, daemon=True)
     thread.start()
     yield srv
@@ -258,6 +263,13 @@ def test_page_embeds_the_workspace(server):
     assert embedded['packages'][0]['executables'][0]['name'] == 'talker'
 
 
+def test_page_modules_come_with_colcon_wasm_not_the_install_space(server):
+    # cdr.mjs and tools/ belong to the page: an old build's copy must not be served
+    assert _get(server, '/wasm_js/cdr.mjs')[2] == b'// the page version\n'
+    assert _get(server, '/wasm_js/tools/deep.mjs')[2] == b'export const z = 4;\n'
+    assert _get(server, '/wasm_js/dep.mjs')[0] == 200  # the runtime: the install space's
+
+
 def test_page_preloads_its_module_graph_and_the_run_executables(server):
     _, _, body = _get(server, '/?run=demo_nodes/talker&run=demo_nodes/nope')
     html = body.decode()
@@ -270,7 +282,7 @@ def test_page_preloads_its_module_graph_and_the_run_executables(server):
 
 
 def test_port_already_taken_is_a_clear_error(install, server):
-    base, runtime = install
+    base, runtime, _ = install
     port = server.server_address[1]
     with pytest.raises(ServeError) as info:
         make_server(InstallSpace(base), host='127.0.0.1', port=port, launcher_dir=LAUNCHER,
@@ -281,7 +293,7 @@ def test_port_already_taken_is_a_clear_error(install, server):
 
 
 def test_port_taken_by_another_program(install):
-    base, runtime = install
+    base, runtime, _ = install
     blocker = socket.socket()
     blocker.bind(('127.0.0.1', 0))
     blocker.listen(1)
@@ -346,7 +358,7 @@ def test_cli_without_an_install_space(tmp_path):
 
 
 def test_cli_port_taken_and_serving(install, server):
-    base, _ = install
+    base, _, _ = install
     port = server.server_address[1]
     result = subprocess.run([_colcon_wasm(), 'serve', '--install-base', str(base),
                              '--port', str(port)], capture_output=True, text=True, timeout=60)

@@ -41,12 +41,13 @@ class ServeCommand(CliExtensionPoint):
     def main(self, *, args):  # noqa: D102
         try:
             install_space = InstallSpace(args.install_base)
-            runtime_dir, runtime_origin = find_runtime(
-                install_space, resources.path('packages') / 'wasm_js' / 'src')
+            bundled = resources.path('packages') / 'wasm_js' / 'src'
+            runtime_dir, runtime_origin = find_runtime(install_space, bundled)
             server = make_server(
                 install_space, host=args.host, port=args.port,
                 launcher_dir=resources.path('templates') / 'launcher',
-                runtime_dir=runtime_dir, runtime_origin=runtime_origin)
+                runtime_dir=runtime_dir, runtime_origin=runtime_origin,
+                page_modules_dir=bundled)
         except (InstallSpaceError, ServeError) as e:
             print('colcon-wasm serve: {}'.format(e), file=sys.stderr)
             return 1

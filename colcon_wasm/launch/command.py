@@ -72,11 +72,12 @@ def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, com
         return 0
     from colcon_wasm import resources
     from colcon_wasm.server import find_runtime
+    from colcon_wasm.server import runtime_entry
     from colcon_wasm.server import ServeError
     try:
-        runtime_dir, _ = find_runtime(
-            install_space, resources.path('packages') / 'wasm_js' / 'src')
-        return run_host(description, runtime_dir)
+        bundled = resources.path('packages') / 'wasm_js' / 'src'
+        runtime_dir, _ = find_runtime(install_space, bundled)
+        return run_host(description, runtime_dir / runtime_entry(runtime_dir), bundled)
     except (LaunchError, ServeError) as e:
         print('{}: {}'.format(command, e), file=err)
         return 1

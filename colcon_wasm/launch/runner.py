@@ -80,17 +80,20 @@ def host_plan(plan, install_space, *, duration=None, echo=()):
     }
 
 
-def run_host(description, runtime_dir, *, node=None, stdout=None, stderr=None):
+def run_host(description, runtime_module, host_dir, *, node=None, stdout=None, stderr=None):
     """
     Run the Node host on a plan description and return its exit status.
 
-    Ctrl-C reaches the host (same process group); this process waits for it
-    to stop its nodes, so the host's status is the command's status.
+    The host script comes with colcon-wasm (``host_dir``, it reads this
+    plan); the Runtime it imports is the install space's (``runtime_module``,
+    it matches the executables). Ctrl-C reaches the host (same process
+    group); this process waits for it to stop its nodes, so the host's status
+    is the command's status.
     """
-    script = Path(runtime_dir) / HOST_SCRIPT
+    script = Path(host_dir) / HOST_SCRIPT
     if not script.is_file():
-        raise LaunchError("the runtime at '{}' has no '{}': rebuild wasm_js or reinstall "
-                          'colcon-wasm'.format(runtime_dir, HOST_SCRIPT))
+        raise LaunchError("'{}' is missing: reinstall colcon-wasm".format(script))
+    description = dict(description, runtime=Path(runtime_module).as_uri())
     command = [node or find_node(), str(script), json.dumps(description)]
     main_thread = threading.current_thread() is threading.main_thread()
     previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main_thread else None

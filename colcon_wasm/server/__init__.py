@@ -49,8 +49,10 @@ def runtime_entry(runtime_dir):
     return RUNTIME_ENTRIES[0]
 
 
-def make_server(install_space, *, host, port, launcher_dir, runtime_dir, runtime_origin):
+def make_server(install_space, *, host, port, launcher_dir, runtime_dir, runtime_origin,
+                page_modules_dir=None):
     """Create (and bind) the server for an install space."""
     site = Site(install_space, launcher_dir=launcher_dir, runtime_dir=runtime_dir,
-                runtime_origin=runtime_origin, runtime_entry=runtime_entry(runtime_dir))
+                runtime_origin=runtime_origin, runtime_entry=runtime_entry(runtime_dir),
+                page_modules_dir=page_modules_dir)
     return LauncherServer(site, host, port)

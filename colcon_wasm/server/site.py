@@ -8,7 +8,9 @@
                            ``templates/launcher/index.html`` (Jinja)
 ``/launcher/<file>``       the page's modules and styles (``templates/launcher``)
 ``/wasm_js/<file>``        the JS runtime (``share/wasm_js`` of the install
-                           space, else the copy inside colcon-wasm)
+                           space, else the copy inside colcon-wasm); its
+                           page-side modules ``cdr.mjs`` and ``tools/`` always
+                           come with colcon-wasm, like the page itself
 ``/workspace.json``        packages, executables and type descriptions, from
                            the manifests (read anew on each request)
 ``/ws/<pkg>/<path>``       only the files the package's manifest lists, and its
@@ -28,6 +30,9 @@ import jinja2
 
 PAGE_TEMPLATE = 'index.html'
 PAGE_MODULE = '/launcher/app.mjs'
+# /wasm_js/ entries that belong to the page (same version as the page), not
+# to the runtime the executables were built with
+PAGE_MODULES = ('cdr.mjs', 'tools')
 
 # static `import ... from '<url>'` and `export ... from '<url>'` of an ES module
 _IMPORT = re.compile(r"""^\s*(?:import|export)\b[^'"]*?\bfrom\s*['"]([^'"]+)['"]"""
@@ -48,18 +53,21 @@ class Site:
     """Maps URL paths of the launcher to content."""
 
     def __init__(self, install_space, *, launcher_dir, runtime_dir, runtime_origin,
-                 runtime_entry='index.mjs', title=None):
+                 runtime_entry='index.mjs', page_modules_dir=None, title=None):
         """
         Create the site.
 
         :param install_space: an InstallSpace
         :param launcher_dir: ``templates/launcher`` (page template and modules)
         :param runtime_dir: the directory holding wasm_js's ``index.mjs``
+        :param page_modules_dir: where ``cdr.mjs`` and ``tools/`` are served
+          from (the page's version of them); default: ``runtime_dir``
         :param runtime_origin: where the runtime comes from, shown on the page
         """
         self.install_space = install_space
         self.launcher_dir = Path(launcher_dir)
         self.runtime_dir = Path(runtime_dir)
+        self.page_modules_dir = Path(page_modules_dir or runtime_dir)
         self.runtime_origin = runtime_origin
         self.runtime_entry = runtime_entry
         self.title = title or 'colcon-wasm: {}'.format(install_space.base.parent.name)
@@ -162,7 +170,7 @@ class Site:
                 raise Refused(404, 'not found')
             return Content(path=resolve_under(self.launcher_dir, rest))
         if head == 'wasm_js' and rest:
-            return Content(path=resolve_under(self.runtime_dir, rest))
+            return Content(path=resolve_under(self._runtime_root(rest[0]), rest))
         if head == 'ws' and len(rest) >= 2:
             package_name, relative = rest[0], '/'.join(rest[1:])
             package = self._allowed_files().get((package_name, relative))
@@ -176,11 +184,19 @@ class Site:
                            content_type='image/svg+xml')
         raise Refused(404, 'not found')
 
+    def _runtime_root(self, first_segment):
+        """Return the folder a /wasm_js/ path is served from."""
+        if first_segment in PAGE_MODULES:
+            return self.page_modules_dir
+        return self.runtime_dir
+
     def _module_path(self, url):
         """Return the file of a module URL of the site, or None."""
-        for prefix, root in (('/launcher/', self.launcher_dir), ('/wasm_js/', self.runtime_dir)):
-            if url.startswith(prefix):
-                return root / url[len(prefix):]
+        if url.startswith('/launcher/'):
+            return self.launcher_dir / url[len('/launcher/'):]
+        if url.startswith('/wasm_js/'):
+            relative = url[len('/wasm_js/'):]
+            return self._runtime_root(relative.split('/')[0]) / relative
         return None
 
     def module_graph(self, entries):

@@ -7,8 +7,9 @@
  *   node launch_host.mjs '<plan JSON>'
  *
  * The plan (colcon_wasm/launch/runner.py) lists processes with absolute .js
- * paths, arguments and environment, an optional duration, topics to echo and
- * the types.json files. All processes share one bus (one Runtime). Output is
+ * paths, arguments and environment, an optional duration, topics to echo,
+ * the types.json files and the URL of the Runtime module to use (the install
+ * space's, which matches the executables). All processes share one bus (one Runtime). Output is
  * prefixed `[label]` and process events are reported as `ros2 launch` does.
  * The exit status is 1 when a process crashed or exited with a non-zero
  * code, 0 otherwise.
@@ -19,7 +20,6 @@ import process from 'node:process';
 import { pathToFileURL } from 'node:url';
 
 import { TypeRegistry } from '../cdr.mjs';
-import { Runtime } from '../runtime.mjs';
 import { graphModel, subscriptionQos } from './graph.mjs';
 import { formatYaml } from './yaml.mjs';
 
@@ -71,6 +71,7 @@ function echoTopic(runtime, tools, registry, topic, stopping) {
 
 async function main() {
   const plan = JSON.parse(process.argv[2]);
+  const { Runtime } = await import(plan.runtime || new URL('../runtime.mjs', import.meta.url).href);
   const runtime = await Runtime.create({});
   const registry = loadRegistry(plan.types || []);
   const handles = new Map();
