@@ -46,7 +46,9 @@ _INPUT_FOLDERS = ('colcon_wasm', 'recipes', 'toolchains', 'patches',
 
 """colcon-wasm files that do not change what a build produces."""
 _NOT_INPUTS = ('colcon_wasm/cli/', 'colcon_wasm/blasm.py',
-               'colcon_wasm/doctor.py', 'recipes/schema.md',
+               'colcon_wasm/doctor.py', 'colcon_wasm/launch/',
+               'colcon_wasm/server/', 'templates/launcher/',
+               'recipes/schema.md',
                'recipes/humble.repos')
 
 
