@@ -209,9 +209,10 @@ class Bench {
     const stacks = new Map();
     const workers = [];
     const done = [];
-    for (const cfg of configs) {
+    for (let i = 0; i < configs.length; i++) {
       const w = await this.env.HostWorker.start(new URL('poll_worker.mjs', this.env.here).href, { type: 'module', name: 'poll' });
-      done.push(new Promise((resolve) => {
+      done.push(new Promise((resolve, reject) => {
+        w.on('error', (e) => reject(new Error(`poll worker failed: ${e.message}`)));
         w.on('message', (m) => {
           if (m.cmd === 'publish') {
             const s = stacks.get(m.topic) || [];

@@ -300,6 +300,9 @@ export class Runtime {
     const bus = this.bus;
     Atomics.store(bus.i32, bus.proc(pid) + P.STATE, 2);
     bus.ringAll();
+    // A terminated browser worker (or one of its pthreads) stops a little
+    // later: if it holds the lock, let it finish the mutation it began.
+    await bus.releaseGrace(pid, 250);
     await bus.lockAsync(this.pid);
     try {
       bus.cleanupProcess(pid);
