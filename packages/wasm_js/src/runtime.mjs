@@ -95,7 +95,12 @@ export class NodeProcess {
     } catch (e) {
       // Already gone.
     }
-    await this._runtime._reap(this.id, this);
+    try {
+      await this._runtime._reap(this.id, this);
+    } catch (e) {
+      // The exit must still be reported; the bus says what went wrong.
+      console.error(`wasm_js: cleaning up after '${this.name}' (process ${this.id}) failed: ${e && e.stack ? e.stack : e}`);
+    }
     if (this._options.onExit) {
       try {
         this._options.onExit(result);
