@@ -19,6 +19,7 @@ per test session).
     assert report['ok'], explain(report)
 """
 
+import atexit
 import json
 import os
 from pathlib import Path
@@ -45,12 +46,14 @@ def browser_skip_reason():
     return None
 
 
-class _Browser:
-    """One headless Chromium serving one install space, for the whole session."""
+class Browser:
+    """One headless Chromium serving an install space (and extra folders)."""
 
-    def __init__(self, install):
+    def __init__(self, install, routes=()):
+        """Start the browser; `routes` are extra ('/prefix/', folder) pairs to serve."""
         self.process = subprocess.Popen(
-            ['node', str(HERE / 'browser_scenario.mjs'), str(install)],
+            ['node', str(HERE / 'browser_scenario.mjs'), str(install)] +
+            [f'{prefix}={folder}' for prefix, folder in routes],
             stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
         hello = self.process.stdout.readline()
         assert hello, 'browser_scenario.mjs exited at start-up'
@@ -58,8 +61,16 @@ class _Browser:
         self.next_id = 0
 
     def run(self, scenario):
+        """Run a scenario in a new page; returns its report."""
+        return self._send({'scenario': scenario})
+
+    def call(self, page, function, arg):
+        """Open a page and return `await window[function](arg)`."""
+        return self._send({'page': page, 'call': function, 'arg': arg})
+
+    def _send(self, message):
         self.next_id += 1
-        self.process.stdin.write(json.dumps({'id': self.next_id, 'scenario': scenario}) + '\n')
+        self.process.stdin.write(json.dumps({'id': self.next_id, **message}) + '\n')
         self.process.stdin.flush()
         line = self.process.stdout.readline()
         assert line, 'browser_scenario.mjs exited'
@@ -68,6 +79,7 @@ class _Browser:
         return reply['result']
 
     def close(self):
+        """Stop the browser and the server."""
         if self.process.poll() is None:
             self.process.stdin.close()
             try:
@@ -77,8 +89,9 @@ class _Browser:
                 self.process.wait()
 
 
+@atexit.register
 def close_browsers():
-    """Stop the session's browsers (pytest session finish)."""
+    """Stop the session's browsers (at exit)."""
     for browser in _browsers.values():
         browser.close()
     _browsers.clear()
@@ -97,7 +110,7 @@ class Platform:
                 pytest.skip(reason)
             key = str(self.install)
             if key not in _browsers:
-                _browsers[key] = _Browser(self.install)
+                _browsers[key] = Browser(self.install)
             self._browser = _browsers[key]
 
     def exe(self, package, name):

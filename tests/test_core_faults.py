@@ -31,7 +31,9 @@ def test_crashing_node_reported_with_reason_others_continue(platform):
     why = harness.explain(run)
     victim = harness.exit_of(run, 'victim')
     assert victim['crashed'] and victim['code'] != 0, why
-    assert 'abort' in victim['reason'], why
+    # "aborted: ..." (from the abort hook) or "uncaught error: Aborted(...)"
+    # (the worker's error event), whichever reaches the runtime first.
+    assert 'abort' in victim['reason'].lower(), why
     assert run['extra']['graph_after'] == ['other', 'survivor'], why
     assert int(harness.results(run, 'survivor')['continued']) >= 2000, why
 

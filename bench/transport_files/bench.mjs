@@ -119,6 +119,19 @@ class Bench {
     }
   }
 
+  /** Publish and take cost in one thread (no wake-ups), through the whole C++ → JS path. */
+  async oursOps(size) {
+    const rt = await this.runtime();
+    try {
+      const loop = await this.spawn(rt, 'loop', { size, count: 200000 });
+      await loop.wait('take_ns');
+      await loop.proc.exited;
+      return { publishNs: Number(loop.results.publish_ns), takeNs: Number(loop.results.take_ns) };
+    } finally {
+      await rt.close();
+    }
+  }
+
   /**
    * Node start: the first message's source timestamp minus the moment spawn() was called.
    * mode 'cold': a new worker compiles the .wasm itself; 'shared': a new worker
@@ -209,9 +222,10 @@ class Bench {
     const stacks = new Map();
     const workers = [];
     const done = [];
-    for (const cfg of configs) {
+    for (let i = 0; i < configs.length; i++) {
       const w = await this.env.HostWorker.start(new URL('poll_worker.mjs', this.env.here).href, { type: 'module', name: 'poll' });
-      done.push(new Promise((resolve) => {
+      done.push(new Promise((resolve, reject) => {
+        w.on('error', (e) => reject(new Error(`poll worker failed: ${e.message}`)));
         w.on('message', (m) => {
           if (m.cmd === 'publish') {
             const s = stacks.get(m.topic) || [];
@@ -264,7 +278,11 @@ export async function runAll(env, options = {}) {
   const out = { latency: { ours: {}, raw: {}, poll: {} }, throughput: {}, start: {} };
   const q = options.quick ? 0.1 : 1;
   const log = env.log || (() => {});
-  const parts = options.parts || ['latency', 'throughput', 'fanout', 'start'];
+  const parts = options.parts || ['ops', 'latency', 'throughput', 'fanout', 'start'];
+  if (parts.includes('ops')) {
+    log('publish/take cost');
+    out.ops = { 64: await b.oursOps(64), 1024: await b.oursOps(1024) };
+  }
   if (parts.includes('latency')) {
     for (const size of SIZES) {
       log(`latency ${size} B`);

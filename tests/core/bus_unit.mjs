@@ -46,7 +46,7 @@ const bytes = (...v) => Uint8Array.from(v);
 const CHECKS = {
   /** A lock held by a dead process is stolen; a live owner's is not. */
   async lock_stolen_from_dead_owner() {
-    const { bus, runtime, clients: [a, b] } = world(2);
+    const { bus, clients: [a, b] } = world(2);
     assert.ok(bus.tryLock(a.pid));
     assert.equal(bus.tryLock(b.pid), false, 'a live owner keeps the lock');
     die(bus, a.pid);

@@ -7,7 +7,11 @@
  *
  *   {"id": 1, "scenario": {...}}   ->   {"id": 1, "result": {report}}
  *
- *   node browser_scenario.mjs INSTALL_DIR
+ *   node browser_scenario.mjs INSTALL_DIR [/PREFIX/=DIR ...]
+ *
+ * Extra routes serve more folders (bench/rclcpp adds its page and the core's
+ * bench nodes); {"id": 2, "page": "/bench/page.html", "call": "runBench",
+ * "arg": ...} opens that page and returns `await window[call](arg)`.
  *
  * The first line printed is {"ready": true, "base": URL}: executables are
  * at BASE/install/<pkg>/lib/<pkg>/<exe>.js. playwright-core comes from
@@ -26,12 +30,13 @@ const here = path.dirname(fileURLToPath(import.meta.url));
 const require = createRequire(path.join(here, '..', 'js', 'package.json'));
 const { chromium } = require('playwright-core');
 
-const [installDir] = process.argv.slice(2);
+const [installDir, ...extraRoutes] = process.argv.slice(2);
 const TYPES = {
   '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript',
   '.wasm': 'application/wasm', '.json': 'application/json',
 };
-const ROUTES = [['/install/', installDir], ['/rmw/', path.join(here, 'web')]];
+const ROUTES = [['/install/', installDir], ['/rmw/', path.join(here, 'web')],
+  ...extraRoutes.map((r) => [r.slice(0, r.indexOf('=')), r.slice(r.indexOf('=') + 1)])];
 
 const server = http.createServer((req, res) => {
   const url = new URL(req.url, 'http://localhost');
@@ -67,18 +72,19 @@ const browser = await chromium.launch({
 // Playwright gives the browser a fresh temporary profile (--user-data-dir) itself.
 const context = await browser.newContext();
 
-async function runScenario(scenario) {
+// Open a page, wait until it is ready, return `await window[call](arg)` (plus the console).
+async function callPage(pagePath, call, arg) {
   const page = await context.newPage();
   const console = [];
   page.on('console', (m) => console.push(`${m.type()}: ${m.text()}`));
   page.on('pageerror', (e) => console.push(`pageerror: ${e.message}`));
   try {
-    await page.goto(`${base}/rmw/page.html`);
+    await page.goto(`${base}${pagePath}`);
     await page.waitForFunction('window.pageReady === true', null, { timeout: 30000 });
     const status = await page.textContent('#status');
     if (status !== 'ready') return { ok: false, error: `page not ready: ${status}`, console };
-    const report = await page.evaluate((s) => window.runScenario(s), scenario);
-    return { ...report, console };
+    const value = await page.evaluate(([f, a]) => window[f](a), [call, arg]);
+    return { ...value, console };
   } finally {
     await page.close();
   }
@@ -99,7 +105,10 @@ for await (const line of rl) {
   if (msg.cmd === 'quit') break;
   let reply;
   try {
-    reply = { id: msg.id, result: await runScenario(msg.scenario) };
+    const result = msg.page
+      ? await callPage(msg.page, msg.call, msg.arg)
+      : await callPage('/rmw/page.html', 'runScenario', msg.scenario);
+    reply = { id: msg.id, result };
   } catch (e) {
     reply = { id: msg.id, error: e && e.stack ? e.stack : String(e) };
   }

@@ -220,27 +220,38 @@ export class Bus {
 
   /**
    * Take the registry lock, blocking (workers only).
+   *
+   * Workers never steal the lock: when its owner dies, the runtime's cleanup
+   * steals it and its unlock() wakes us. A thread whose own process was
+   * declared dead (its worker is being terminated) cannot take it.
    * @param {number} pid the caller's process id
    */
   lock(pid) {
     const i32 = this.i32;
-    for (let spin = 0; spin < 64; spin++) {
-      if (Atomics.compareExchange(i32, H.LOCK, 0, pid) === 0) return;
+    let acquired = false;
+    for (let spin = 0; spin < 64 && !acquired; spin++) {
+      acquired = Atomics.compareExchange(i32, H.LOCK, 0, pid) === 0;
     }
-    for (;;) {
+    while (!acquired) {
       let v = Atomics.load(i32, H.LOCK);
       if (v === 0) {
-        if (Atomics.compareExchange(i32, H.LOCK, 0, pid | LOCK_CONTENDED) === 0) return;
+        acquired = Atomics.compareExchange(i32, H.LOCK, 0, pid | LOCK_CONTENDED) === 0;
         continue;
       }
-      if (this._stealIfOwnerDead(v, pid | LOCK_CONTENDED)) return;
       if (!(v & LOCK_CONTENDED)) {
         if (Atomics.compareExchange(i32, H.LOCK, v, v | LOCK_CONTENDED) !== v) continue;
         v |= LOCK_CONTENDED;
       }
-      // The owner's unlock() wakes us; if the owner dies, the runtime's
-      // cleanup steals the lock and its unlock() wakes us.
       Atomics.wait(i32, H.LOCK, v);
+    }
+    this._checkAliveOwner(pid);
+  }
+
+  _checkAliveOwner(pid) {
+    const st = Atomics.load(this.i32, this.proc(pid) + P.STATE);
+    if (st !== PROC_ALIVE) {
+      this.unlock(pid);
+      throw new BusError(Code.ERROR, `process ${pid} was declared dead by the runtime (its worker is being stopped)`);
     }
   }
 
@@ -281,6 +292,24 @@ export class Bus {
     }
   }
 
+  /**
+   * Give a dead process that holds the lock `ms` to release it (a terminated
+   * worker, or one of its pthreads, may still be finishing a mutation), without
+   * blocking. Then lockAsync() steals it if it is still held.
+   * @param {number} pid the dead process
+   * @param {number} ms
+   */
+  async releaseGrace(pid, ms) {
+    const deadline = now() + ms;
+    for (;;) {
+      const v = Atomics.load(this.i32, H.LOCK);
+      const left = deadline - now();
+      if ((v & LOCK_OWNER_MASK) !== pid || left <= 0) return;
+      const r = Atomics.waitAsync(this.i32, H.LOCK, v, left);
+      if (r.async) await r.value;
+    }
+  }
+
   _stealIfOwnerDead(v, newValue) {
     const owner = v & LOCK_OWNER_MASK;
     if (owner <= 0 || owner >= this.procCap) return false;
@@ -290,16 +319,21 @@ export class Bus {
   }
 
   /**
-   * Release the registry lock.
+   * Release the registry lock (only if the caller still holds it).
    * @param {number} pid
    */
   unlock(pid) {
-    const v = Atomics.exchange(this.i32, H.LOCK, 0);
-    if ((v & LOCK_OWNER_MASK) !== pid) {
-      // Stolen (we were declared dead) or a bug: do not hide it.
-      throw new BusError(Code.ERROR, `registry lock released by process ${pid} but held by ${v & LOCK_OWNER_MASK}`);
+    const i32 = this.i32;
+    for (;;) {
+      const v = Atomics.load(i32, H.LOCK);
+      if ((v & LOCK_OWNER_MASK) !== pid) {
+        // Stolen: the runtime declared us dead. Leave the new owner's lock alone.
+        throw new BusError(Code.ERROR, `registry lock released by process ${pid} but held by ${v & LOCK_OWNER_MASK} (this process was declared dead)`);
+      }
+      if (Atomics.compareExchange(i32, H.LOCK, v, 0) !== v) continue; // a waiter marked it contended
+      if (v & LOCK_CONTENDED) Atomics.notify(i32, H.LOCK, 1);
+      return;
     }
-    if (v & LOCK_CONTENDED) Atomics.notify(this.i32, H.LOCK, 1);
   }
 
   /** Commit a registry change: bump the graph version and wake graph waiters. */

@@ -87,7 +87,8 @@ export class BusClient {
    */
   static createPrivate(options = {}) {
     const bus = Bus.create(options);
-    bus.lock(1);
+    // A new bus: nobody else can hold the lock (pid 1 becomes the runtime's).
+    if (!bus.tryLock(1)) throw new BusError(Code.ERROR, 'a new bus is already locked');
     const runtimePid = bus.allocProcess(1);
     const pid = bus.allocProcess(PROC_KIND_NODE);
     bus.unlock(runtimePid);

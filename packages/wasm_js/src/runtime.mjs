@@ -129,7 +129,12 @@ export class NodeProcess {
     } catch (e) {
       // Already gone.
     }
-    await this._runtime._reap(this.id, this);
+    try {
+      await this._runtime._reap(this.id, this);
+    } catch (e) {
+      // The exit must still be reported; the bus says what went wrong.
+      console.error(`wasm_js: cleaning up after '${this.name}' (process ${this.id}) failed: ${e && e.stack ? e.stack : e}`);
+    }
     if (this._options.onExit) {
       try {
         this._options.onExit(result);
@@ -340,6 +345,9 @@ export class Runtime {
     const bus = this.bus;
     Atomics.store(bus.i32, bus.proc(pid) + P.STATE, 2);
     bus.ringAll();
+    // A terminated browser worker (or one of its pthreads) stops a little
+    // later: if it holds the lock, let it finish the mutation it began.
+    await bus.releaseGrace(pid, 250);
     await bus.lockAsync(this.pid);
     try {
       bus.cleanupProcess(pid);

@@ -20,8 +20,10 @@
 /// Every scenario reports through the ROS logger (so the host sees the
 /// severity) with lines tests/test_rmw_nodes.py looks for.
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
+#include <cstring>
 #include <functional>
 #include <future>
 #include <memory>
@@ -32,6 +34,7 @@
 #include "example_interfaces/srv/add_two_ints.hpp"
 #include "rclcpp/rclcpp.hpp"
 #include "rosgraph_msgs/msg/clock.hpp"
+#include "sensor_msgs/msg/image.hpp"
 #include "std_msgs/msg/int32.hpp"
 #include "std_msgs/msg/string.hpp"
 
@@ -353,6 +356,176 @@ int load_component(const std::vector<std::string> & args)
   return 0;
 }
 
+
+// ---------------------------------------------------------------- bench/rclcpp
+
+// A message of the bench: a 32-character std_msgs/String or a 1 MiB sensor_msgs/Image.
+template<typename T>
+T bench_message();
+
+template<>
+std_msgs::msg::String bench_message<std_msgs::msg::String>()
+{
+  std_msgs::msg::String message;
+  message.data.assign(32, 'x');
+  return message;
+}
+
+template<>
+sensor_msgs::msg::Image bench_message<sensor_msgs::msg::Image>()
+{
+  sensor_msgs::msg::Image message;
+  message.header.frame_id = "camera";
+  message.width = 512;
+  message.height = 512;
+  message.encoding = "rgba8";
+  message.step = 4 * 512;
+  message.data.assign(4 * 512 * 512, 0x5a);
+  return message;
+}
+
+// Write and read the sequence number a bench message carries.
+void stamp(std_msgs::msg::String & message, uint32_t n)
+{
+  std::memcpy(&message.data[0], &n, sizeof(n));
+}
+uint32_t stamp_of(const std_msgs::msg::String & message)
+{
+  uint32_t n = 0;
+  std::memcpy(&n, message.data.data(), sizeof(n));
+  return n;
+}
+void stamp(sensor_msgs::msg::Image & message, uint32_t n) {message.header.stamp.nanosec = n;}
+uint32_t stamp_of(const sensor_msgs::msg::Image & message) {return message.header.stamp.nanosec;}
+
+// Echo every message of bench/ping on bench/pong.
+template<typename T>
+int bench_pong()
+{
+  auto node = std::make_shared<rclcpp::Node>("bench_pong");
+  auto publisher = node->create_publisher<T>("bench/pong", rclcpp::QoS(10));
+  auto subscription = node->create_subscription<T>(
+    "bench/ping", rclcpp::QoS(10), [&](const T & message) {publisher->publish(message);});
+  RCLCPP_INFO(node->get_logger(), "READY");
+  rclcpp::spin(node);
+  return 0;
+}
+
+// Send `count` messages to bench_pong, one at a time; report the one-way latency (RTT / 2).
+template<typename T>
+int bench_ping(const std::vector<std::string> & args)
+{
+  const long count = args.size() > 0 ? std::atol(args[0].c_str()) : 1000;  // NOLINT
+  const long warmup = args.size() > 1 ? std::atol(args[1].c_str()) : 100;  // NOLINT
+  auto node = std::make_shared<rclcpp::Node>("bench_ping");
+  auto publisher = node->create_publisher<T>("bench/ping", rclcpp::QoS(10));
+  uint32_t expected = 0;
+  bool answered = false;
+  auto subscription = node->create_subscription<T>(
+    "bench/pong", rclcpp::QoS(10), [&](const T & message) {
+      answered = stamp_of(message) == expected;
+    });
+  rclcpp::executors::SingleThreadedExecutor executor;
+  executor.add_node(node);
+  while (rclcpp::ok() &&
+    (publisher->get_subscription_count() == 0 || subscription->get_publisher_count() == 0))
+  {
+    executor.spin_once(100ms);  // woken by the graph change
+  }
+  T message = bench_message<T>();
+  std::vector<double> one_way;
+  for (long i = 0; i < warmup + count && rclcpp::ok(); ++i) {  // NOLINT
+    expected = static_cast<uint32_t>(i);
+    answered = false;
+    stamp(message, expected);
+    const auto t0 = std::chrono::steady_clock::now();
+    publisher->publish(message);
+    while (!answered && rclcpp::ok()) {
+      executor.spin_once(5s);
+    }
+    const double us = std::chrono::duration<double, std::micro>(
+      std::chrono::steady_clock::now() - t0).count();
+    if (i >= warmup) {
+      one_way.push_back(us / 2);
+    }
+  }
+  std::sort(one_way.begin(), one_way.end());
+  auto pct = [&](double p) {
+      return one_way[std::min(one_way.size() - 1, static_cast<size_t>(p * one_way.size()))];
+    };
+  std::printf(
+    "RESULT count=%zu p50_us=%.2f p99_us=%.2f min_us=%.2f max_us=%.2f\n",
+    one_way.size(), pct(0.5), pct(0.99), one_way.front(), one_way.back());
+  return 0;
+}
+
+// Publish `count` strings as fast as a RELIABLE KEEP_ALL subscription takes them.
+int bench_flood(const std::vector<std::string> & args)
+{
+  const uint32_t count = args.empty() ? 100000 : static_cast<uint32_t>(std::atol(args[0].c_str()));
+  auto node = std::make_shared<rclcpp::Node>("bench_flood");
+  auto publisher = node->create_publisher<std_msgs::msg::String>(
+    "bench/flood", rclcpp::QoS(rclcpp::KeepAll()).reliable());
+  rclcpp::executors::SingleThreadedExecutor executor;
+  executor.add_node(node);
+  while (rclcpp::ok() && publisher->get_subscription_count() == 0) {
+    executor.spin_once(100ms);
+  }
+  auto message = bench_message<std_msgs::msg::String>();
+  const auto t0 = std::chrono::steady_clock::now();
+  for (uint32_t i = 0; i < count; ++i) {
+    stamp(message, i);
+    publisher->publish(message);
+  }
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("RESULT published=%u publish_per_s=%.0f\n", count, count / s);
+  return 0;
+}
+
+// Take `count` strings from bench_flood; report the rate, losses and disorder.
+int bench_sink(const std::vector<std::string> & args)
+{
+  const uint32_t count = args.empty() ? 100000 : static_cast<uint32_t>(std::atol(args[0].c_str()));
+  auto node = std::make_shared<rclcpp::Node>("bench_sink");
+  uint32_t received = 0;
+  uint32_t disorder = 0;
+  uint32_t last = 0;
+  std::chrono::steady_clock::time_point first;
+  auto subscription = node->create_subscription<std_msgs::msg::String>(
+    "bench/flood", rclcpp::QoS(rclcpp::KeepAll()).reliable(),
+    [&](const std_msgs::msg::String & message) {
+      const uint32_t n = stamp_of(message);
+      if (received == 0) {
+        first = std::chrono::steady_clock::now();
+      } else if (n != last + 1) {
+        ++disorder;
+      }
+      last = n;
+      if (++received == count) {
+        const double s =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - first).count();
+        std::printf(
+          "RESULT received=%u lost=%u disorder=%u msgs_per_s=%.0f\n", received,
+          count - received, disorder, (count - 1) / s);
+        rclcpp::shutdown();
+      }
+    });
+  RCLCPP_INFO(node->get_logger(), "READY");
+  rclcpp::spin(node);
+  return 0;
+}
+
+// Publish one message on /bench/hello as soon as the node exists (node start time).
+int bench_hello(const std::vector<std::string> &)
+{
+  auto node = std::make_shared<rclcpp::Node>("bench_hello");
+  auto publisher = node->create_publisher<std_msgs::msg::String>("/bench/hello", 10);
+  std_msgs::msg::String message;
+  message.data = "hello";
+  publisher->publish(message);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char ** argv)
@@ -371,6 +544,15 @@ int main(int argc, char ** argv)
     {"oversize", oversize}, {"clock", clock}, {"sim_time", sim_time},
     {"hold_server", hold_server}, {"add_server", add_server}, {"caller", caller},
     {"load_component", load_component},
+    {"bench_pong_string", [](const std::vector<std::string> &) {
+        return bench_pong<std_msgs::msg::String>();
+      }},
+    {"bench_pong_image", [](const std::vector<std::string> &) {
+        return bench_pong<sensor_msgs::msg::Image>();
+      }},
+    {"bench_ping_string", bench_ping<std_msgs::msg::String>},
+    {"bench_ping_image", bench_ping<sensor_msgs::msg::Image>},
+    {"bench_flood", bench_flood}, {"bench_sink", bench_sink}, {"bench_hello", bench_hello},
   };
   for (const auto & s : scenarios) {
     if (scenario == s.name) {
