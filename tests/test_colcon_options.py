@@ -145,3 +145,21 @@ def test_pthread_pool_size_reconfigures_and_reaches_the_link(tmp_path):
                  check=False)
     assert bad.returncode != 0
     assert "'-1' is not a pool size" in bad.stdout
+
+
+def test_opt_level_reaches_every_compile_and_link(tmp_path):
+    # CMake's Clang module appends " -O3" to a toolchain's Release flags:
+    # the chosen level must be the only one on compile and link lines
+    ws = copy_fixture('ws_basic', tmp_path)
+    build = ws / 'build_wasm' / 'calc_app'
+    flags = build / 'CMakeFiles' / 'calc.dir' / 'flags.make'
+    link = build / 'CMakeFiles' / 'calc.dir' / 'link.txt'
+    for level in ('2', 's'):
+        colcon(ws, 'build', '--wasm', '--packages-up-to', 'calc_app',
+               '--wasm-opt-level', level)
+        assert _cache_value(build, 'CMAKE_CXX_FLAGS_RELEASE') == \
+            f'-O{level} -DNDEBUG'
+        opts = [w for w in flags.read_text().split() if w.startswith('-O')]
+        assert opts and set(opts) == {f'-O{level}'}, opts
+        opts = [w for w in link.read_text().split() if w.startswith('-O')]
+        assert opts and set(opts) == {f'-O{level}'}, opts
