@@ -100,11 +100,12 @@ export class Plot {
     ctx.fillStyle = '#6b7486';
     ctx.strokeStyle = '#eef0f4';
     ctx.lineWidth = 1;
-    for (let i = 0; i <= 4; i++) {
-      const v = lo + ((hi - lo) * i) / 4;
-      const yy = Math.round(y(v)) + 0.5;
+    const step = niceStep((hi - lo) / 4);
+    for (let v = Math.ceil(lo / step) * step; v <= hi; v += step) {
+      const value = Math.abs(v) < step / 1e6 ? 0 : v;  // no -6.8e-10 for zero
+      const yy = Math.round(y(value)) + 0.5;
       ctx.beginPath(); ctx.moveTo(left, yy); ctx.lineTo(left + w, yy); ctx.stroke();
-      ctx.fillText(Math.abs(v) >= 1000 || (Math.abs(v) < 0.01 && v !== 0) ? v.toExponential(1) : v.toFixed(2), 4, yy + 4);
+      ctx.fillText(tickLabel(value, step), 4, yy + 4);
     }
     for (let s = 0; s <= this.windowSeconds; s += this.windowSeconds <= 10 ? 1 : 5) {
       const xx = Math.round(x(start + s * 1000)) + 0.5;
@@ -128,4 +129,31 @@ export class Plot {
   close() {
     cancelAnimationFrame(this.frame);
   }
+}
+
+/**
+ * A grid step of 1, 2 or 5 times a power of ten, close to `raw`.
+ * @param {number} raw
+ * @returns {number}
+ */
+export function niceStep(raw) {
+  if (!(raw > 0) || !Number.isFinite(raw)) return 1;
+  const power = 10 ** Math.floor(Math.log10(raw));
+  const f = raw / power;
+  return (f < 1.5 ? 1 : f < 3.5 ? 2 : f < 7.5 ? 5 : 10) * power;
+}
+
+/**
+ * A tick label with as many decimals as the step needs.
+ * @param {number} v
+ * @param {number} step
+ * @returns {string}
+ */
+export function tickLabel(v, step) {
+  if (v === 0) return '0';
+  if (Math.abs(v) >= 1e5 || Math.abs(v) < 1e-4) {
+    const digits = Math.min(12, Math.max(1, Math.ceil(Math.log10(Math.abs(v) / step))));
+    return v.toExponential(digits);
+  }
+  return v.toFixed(Math.min(12, Math.max(0, -Math.floor(Math.log10(step)))));
 }
