@@ -206,7 +206,7 @@ int oversize(const std::vector<std::string> & args)
 }
 
 // Publishes /clock, starting at the given number of seconds.
-int clock(const std::vector<std::string> & args)
+int clock_publisher(const std::vector<std::string> & args)
 {
   const int32_t start = args.empty() ? 1000 : std::atoi(args[0].c_str());
   auto node = std::make_shared<rclcpp::Node>("clock_publisher");
@@ -541,7 +541,7 @@ int main(int argc, char ** argv)
     {"param_talker", param_talker}, {"listener", listener}, {"mt_listener", mt_listener},
     {"param_reader", param_reader},
     {"wrong_type", wrong_type}, {"no_server", no_server}, {"invalid_topic", invalid_topic},
-    {"oversize", oversize}, {"clock", clock}, {"sim_time", sim_time},
+    {"oversize", oversize}, {"clock", clock_publisher}, {"sim_time", sim_time},
     {"hold_server", hold_server}, {"add_server", add_server}, {"caller", caller},
     {"load_component", load_component},
     {"bench_pong_string", [](const std::vector<std::string> &) {
