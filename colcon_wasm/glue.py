@@ -12,7 +12,8 @@ files it goes into and where::
 
 * `targets`: `js` (the executable's `<exe>.js`) and/or `worker` (the
   pthread bootstrap `<exe>.worker.js`, present with `-pthread`);
-* `at`: `head` (before the glue), `tail` (after it) or `before:TEXT`
+* `at`: `head` (before the glue, after a leading `"use strict";`), `tail`
+  (after it) or `before:TEXT`
   (right before the first occurrence of TEXT; an error if TEXT is absent).
 
 Each injected block is wrapped in `/*colcon-wasm:begin NAME*/` and
@@ -141,7 +142,13 @@ def inject(text, fragments, *, target, context, file_name):
             text = text[:position] + block + text[position:]
     if tails and not text.endswith('\n'):
         text += '\n'
-    return ''.join(heads) + text + ''.join(tails)
+    # keep a "use strict" directive first (the pthread worker.js has one)
+    prologue = ''
+    for directive in ('"use strict";', "'use strict';"):
+        if text.startswith(directive):
+            prologue = directive + '\n'
+            text = text[len(directive):].lstrip('\n')
+    return prologue + ''.join(heads) + text + ''.join(tails)
 
 
 def inject_file(path, fragments, *, target, context):

@@ -3,6 +3,7 @@
 
 """The `--wasm*` command line options and the settings they give."""
 
+import argparse
 import os
 import sys
 
@@ -47,10 +48,24 @@ def add_wasm_arguments(parser):
         '--wasm-opt-level', choices=OPT_LEVELS, default='2',
         help='Optimization level of Release builds (default: 2)')
     parser.add_argument(
-        '--wasm-pthread-pool-size', type=int, metavar='N',
+        '--wasm-pthread-pool-size', type=_pool_size, metavar='N',
         default=_default_pool_size(),
         help='Workers started with each executable (default: '
              f'${PTHREAD_POOL_SIZE_ENV} or 4)')
+
+
+def _pool_size(value):
+    """Parse a pthread pool size: a whole number, 0 or more."""
+    try:
+        size = int(value)
+    except ValueError:
+        size = -1
+    if size < 0:
+        raise argparse.ArgumentTypeError(
+            f"'{value}' is not a pool size: give a whole number, 0 or more "
+            '(0 starts no worker ahead: threads then start only while the '
+            'creating thread returns to its event loop)')
+    return size
 
 
 def _default_pool_size():
@@ -68,14 +83,17 @@ class WasmSettings:
         self.pthread = not getattr(args, 'wasm_no_pthread', False)
         self.debug = bool(getattr(args, 'wasm_debug', False))
         self.opt_level = str(getattr(args, 'wasm_opt_level', '2') or '2')
-        self.pthread_pool_size = int(
-            getattr(args, 'wasm_pthread_pool_size', 4) or 4)
+        pool = getattr(args, 'wasm_pthread_pool_size', None)
+        self.pthread_pool_size = _default_pool_size() if pool is None \
+            else int(pool)
 
     def describe(self, cmake_args):
         """Get the flags entry of the manifest."""
         return {
             'pthread': self.pthread, 'debug': self.debug,
-            'opt': self.opt_level, 'cmake_args': list(cmake_args)}
+            'opt': self.opt_level,
+            'pthread_pool_size': self.pthread_pool_size if self.pthread else 0,
+            'cmake_args': list(cmake_args)}
 
 
 def cmake_arguments(*, emscripten, settings, install_base, rule,

@@ -36,8 +36,12 @@ def colcon(workspace, *args, env=None, check=True, timeout=900):
     """
     Run the real colcon in a workspace.
 
+    Every build must leave `src/` byte-identical: checked on each call.
+
     :returns: the CompletedProcess (stdout and stderr merged into stdout)
     """
+    src = Path(workspace) / 'src'
+    before = tree_digest(src) if src.is_dir() else None
     full_env = dict(os.environ)
     full_env.pop('COLCON_DEFAULTS_FILE', None)
     full_env['COLCON_HOME'] = str(Path(workspace) / '.colcon_home')
@@ -50,6 +54,9 @@ def colcon(workspace, *args, env=None, check=True, timeout=900):
         raise AssertionError(
             f'colcon {" ".join(args)} failed ({completed.returncode}):\n'
             + completed.stdout[-6000:])
+    if before is not None:
+        assert tree_digest(src) == before, \
+            f'colcon {" ".join(args)} changed files under {src}'
     return completed
 
 

@@ -46,7 +46,9 @@ _INPUT_FOLDERS = ('colcon_wasm', 'recipes', 'toolchains', 'patches',
 
 """colcon-wasm files that do not change what a build produces."""
 _NOT_INPUTS = ('colcon_wasm/cli/', 'colcon_wasm/blasm.py',
-               'colcon_wasm/doctor.py', 'recipes/schema.md',
+               'colcon_wasm/doctor.py', 'colcon_wasm/launch/',
+               'colcon_wasm/server/', 'templates/launcher/',
+               'recipes/schema.md',
                'recipes/humble.repos')
 
 
@@ -95,7 +97,7 @@ def _tree_digest(digest, folder):
             continue
         name = path.relative_to(REPO).as_posix() \
             if REPO in path.parents else path.name
-        if name.startswith(_NOT_INPUTS):
+        if name.startswith(_NOT_INPUTS) or name.endswith('.md'):
             continue
         digest.update(name.encode())
         digest.update(path.read_bytes())
@@ -106,7 +108,7 @@ def _emscripten_version():
     return find_emscripten().version_string
 
 
-def inputs_hash(up_to, skip, extra):
+def inputs_hash(up_to, skip, extra, colcon_args=()):
     """Hash what the build depends on."""
     digest = hashlib.sha256()
     digest.update(_file_digest(humble_snapshot() / 'src.tar.xz').encode())
@@ -116,8 +118,8 @@ def inputs_hash(up_to, skip, extra):
     for folder in sorted(extra.values()):
         _tree_digest(digest, folder)
     digest.update(json.dumps(
-        [sorted(up_to), sorted(skip), sorted(extra), _emscripten_version(),
-         sys.version_info[:2]]).encode())
+        [sorted(up_to), sorted(skip), sorted(extra), list(colcon_args),
+         _emscripten_version(), sys.version_info[:2]]).encode())
     return digest.hexdigest()[:16]
 
 
@@ -129,6 +131,26 @@ def source_digest(folder):
             digest.update(path.relative_to(folder).as_posix().encode())
             digest.update(path.read_bytes())
     return digest.hexdigest()
+
+
+def prune_stale_builds(max_age_hours=24):
+    """
+    Remove cached builds nobody used for a day (each is gigabytes).
+
+    A finished build counts as used when its `result.json` was touched (every
+    reuse touches it); an unfinished one by its folder's age.
+    """
+    root = cache_root()
+    if not root.is_dir():
+        return
+    limit = time.time() - max_age_hours * 3600
+    for folder in root.glob('humble-*'):
+        if folder.name.startswith('humble-src-'):
+            continue  # the unpacked snapshot, shared by every build
+        marker = folder / 'result.json'
+        used = (marker if marker.is_file() else folder).stat().st_mtime
+        if used < limit:
+            shutil.rmtree(folder, ignore_errors=True)
 
 
 class HumbleBuild:
@@ -147,13 +169,15 @@ class HumbleBuild:
 
 
 def humble_build(up_to=BELOW_RMW_UP_TO, skip=BELOW_RMW_SKIP,
-                 extra=EXTRA_PACKAGES):
+                 extra=EXTRA_PACKAGES, colcon_args=()):
     """
     Build (or reuse) the Humble snapshot with `colcon build --wasm`.
 
     :param up_to: `--packages-up-to` names
     :param skip: `--packages-skip` names
     :param extra: extra packages to add to the workspace (name: folder)
+    :param colcon_args: more `colcon build` arguments (last on the command
+      line, part of the cache key), e.g. `--cmake-args ...`
     :returns: the :class:`HumbleBuild`
     :raises pytest.skip.Exception: when the snapshot is absent
     :raises AssertionError: when the build fails (with its log tail)
@@ -161,9 +185,12 @@ def humble_build(up_to=BELOW_RMW_UP_TO, skip=BELOW_RMW_SKIP,
     if not (humble_snapshot() / 'src.tar.xz').is_file():
         pytest.skip(f'Humble snapshot not found at {humble_snapshot()} '
                     '(set COLCON_WASM_HUMBLE)')
-    workspace = cache_root() / f'humble-{inputs_hash(up_to, skip, extra)}'
+    key = inputs_hash(up_to, skip, extra, colcon_args)
+    workspace = cache_root() / f'humble-{key}'
     if (workspace / 'result.json').is_file():
+        os.utime(workspace / 'result.json')  # recently used: keep it
         return HumbleBuild(workspace, 0.0, cached=True)
+    prune_stale_builds()
     shutil.rmtree(workspace, ignore_errors=True)
     workspace.mkdir(parents=True)
     shutil.copytree(unpacked_source(), workspace / 'src', symlinks=True)
@@ -173,7 +200,8 @@ def humble_build(up_to=BELOW_RMW_UP_TO, skip=BELOW_RMW_SKIP,
     command = [
         'nice', '-n', '10', str(Path(sys.executable).parent / 'colcon'),
         'build', '--wasm', '--parallel-workers', str(os.cpu_count() or 2),
-        '--packages-skip', *skip, '--packages-up-to', *up_to]
+        '--packages-skip', *skip, '--packages-up-to', *up_to,
+        *colcon_args]
     start = time.monotonic()
     completed = subprocess.run(
         command, cwd=workspace, stdout=subprocess.PIPE,

@@ -86,3 +86,19 @@ def test_bundled_package_is_built(tmp_path):
         'origin.txt'
     assert origin.read_text() == 'bundled\n'
     assert (ws / 'install_wasm' / 'bus_user').is_dir()
+
+
+def test_recipe_depends_reaches_packages_up_to(tmp_path):
+    ws = copy_fixture('ws_bundled', tmp_path)
+    overlay = tmp_path / 'edges.yaml'
+    overlay.write_text('packages:\n  plain_tool:\n    depends: [bus_user]\n')
+    assert _names(colcon_with_bundled(
+        ws, 'list', '--wasm', '--packages-up-to', 'plain_tool')) == [
+        'plain_tool']
+    output = colcon_with_bundled(
+        ws, 'list', '--wasm', '--wasm-recipe', str(overlay),
+        '--packages-up-to', 'plain_tool', '--topological-order')
+    # the recipe edge pulls bus_user (and the bundled package it needs)
+    # in, before plain_tool
+    assert [line.split()[0] for line in output.splitlines()] == [
+        'fake_bus', 'bus_user', 'plain_tool']

@@ -123,3 +123,43 @@ def test_debug_and_no_pthread_reconfigure(tmp_path):
     result = node(bin_dir / 'calc.js', 8, 0)
     assert result.returncode == 3, result.stderr[-2000:]
     assert 'caught DivisionByZero' in result.stdout
+
+
+def test_pthread_pool_size_reconfigures_and_reaches_the_link(tmp_path):
+    ws = copy_fixture('ws_basic', tmp_path)
+    manifest_path = (ws / 'install_wasm' / 'calc_app' / 'share' /
+                     'calc_app' / 'colcon_wasm' / 'manifest.json')
+    glue = ws / 'install_wasm' / 'calc_app' / 'bin' / 'calc.js'
+    build = ws / 'build_wasm' / 'calc_app'
+    for size in ('2', '0'):
+        colcon(ws, 'build', '--wasm', '--packages-up-to', 'calc_app',
+               '--wasm-pthread-pool-size', size)
+        manifest = json.loads(manifest_path.read_text())
+        assert manifest['flags']['pthread_pool_size'] == int(size)
+        assert _cache_value(build, 'COLCON_WASM_PTHREAD_POOL_SIZE') == size
+        link = (build / 'CMakeFiles' / 'calc.dir' / 'link.txt').read_text()
+        assert f'-sPTHREAD_POOL_SIZE={size} ' in link
+    result = node(glue, 8, 2)
+    assert result.returncode == 0, result.stderr[-2000:]
+    bad = colcon(ws, 'build', '--wasm', '--wasm-pthread-pool-size', '-1',
+                 check=False)
+    assert bad.returncode != 0
+    assert "'-1' is not a pool size" in bad.stdout
+
+
+def test_opt_level_reaches_every_compile_and_link(tmp_path):
+    # CMake's Clang module appends " -O3" to a toolchain's Release flags:
+    # the chosen level must be the only one on compile and link lines
+    ws = copy_fixture('ws_basic', tmp_path)
+    build = ws / 'build_wasm' / 'calc_app'
+    flags = build / 'CMakeFiles' / 'calc.dir' / 'flags.make'
+    link = build / 'CMakeFiles' / 'calc.dir' / 'link.txt'
+    for level in ('2', 's'):
+        colcon(ws, 'build', '--wasm', '--packages-up-to', 'calc_app',
+               '--wasm-opt-level', level)
+        assert _cache_value(build, 'CMAKE_CXX_FLAGS_RELEASE') == \
+            f'-O{level} -DNDEBUG'
+        opts = [w for w in flags.read_text().split() if w.startswith('-O')]
+        assert opts and set(opts) == {f'-O{level}'}, opts
+        opts = [w for w in link.read_text().split() if w.startswith('-O')]
+        assert opts and set(opts) == {f'-O{level}'}, opts

@@ -51,3 +51,17 @@ def test_failing_patch_is_a_clear_error(tmp_path):
     assert not (source_copies / 'bad_patch_pkg').exists()
     assert not (source_copies / 'bad_patch_pkg.tmp').exists()
     assert not (ws / 'install_wasm' / 'bad_patch_pkg').exists()
+
+
+def test_patch_added_later_rebuilds_from_the_copy(tmp_path):
+    # a package first configured from src/ must switch to the patched copy
+    # when a recipe later adds a patch (and back when it is removed)
+    ws = copy_fixture('ws_patch', tmp_path)
+    hello = ws / 'install_wasm' / 'patched_hello' / 'bin' / 'hello.js'
+    colcon(ws, 'build', '--wasm', '--packages-select', 'patched_hello')
+    assert node(hello).stdout.strip() == 'hello from the original source'
+    colcon(ws, 'build', '--wasm', '--wasm-recipe', 'recipe.yaml',
+           '--packages-select', 'patched_hello')
+    assert node(hello).stdout.strip() == 'hello from the patched copy'
+    colcon(ws, 'build', '--wasm', '--packages-select', 'patched_hello')
+    assert node(hello).stdout.strip() == 'hello from the original source'

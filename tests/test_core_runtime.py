@@ -102,3 +102,52 @@ def test_executable_alone_without_wasm_js_gets_a_clear_error(tmp_path):
                           env=env, cwd=tmp_path)
     assert done.returncode == 0, done.stdout + done.stderr
     assert Path(tmp_path / 'core_node.js').is_file()
+
+
+def test_log_severity_is_read_through_ansi_colours():
+    # rcutils colours console lines because isatty() is true under Emscripten
+    runtime = Path(__file__).resolve().parent.parent / 'packages' / \
+        'wasm_js' / 'src' / 'runtime.mjs'
+    script = (
+        'import("' + runtime.as_uri() + '").then((m) => {'
+        ' for (const line of ["\\x1b[33m[WARN] [1.5] [n]: careful\\x1b[0m",'
+        ' "\\x1b[0m[INFO] [1.5] [n]: hello\\x1b[0m", "plain"]) {'
+        ' const text = m.stripAnsi(line);'
+        ' console.log(JSON.stringify([text, m.severityOf("stderr", text)]));'
+        ' } });')
+    done = subprocess.run(['node', '--input-type=module', '-e', script],
+                          capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.splitlines() == [
+        '["[WARN] [1.5] [n]: careful","WARN"]',
+        '["[INFO] [1.5] [n]: hello","INFO"]',
+        '["plain","ERROR"]',
+    ]
+
+
+def _lines(run, name):
+    """Get the log lines of process `name` without their severity."""
+    assert run['ok'], harness.explain(run)
+    return [line.split(' ', 1)[1]
+            for line in run['processes'][name]['lines']]
+
+
+@pytest.mark.parametrize('platform', ['node', 'chromium'])
+def test_stdin_files_and_ros_namespace_reach_the_executable(platform):
+    run = harness.run(platform, 'io')
+    why = harness.explain(run)
+    io = _lines(run, 'io')
+    assert 'STDIN 2|3|q|' in io, why
+    assert 'FILE talker:|  ros__parameters:|    greeting: hi|' in io, why
+    # ROS_NAMESPACE becomes a namespace remap (a leading '/' added) ...
+    assert io[-5:-2] == ['ARG 2 --ros-args', 'ARG 3 -r',
+                         'ARG 4 __ns:=/robot1'], why
+    ns = _lines(run, 'io_ns')
+    assert 'ARG 4 __ns:=/robot2' in ns, why
+    # ... unless the arguments remap __ns themselves; no stdin: end of file
+    own = _lines(run, 'io_own_ns')
+    assert [line for line in own if '__ns:=' in line] == [
+        'ARG 4 __ns:=/mine'], why
+    assert 'STDIN ' in own, why
+    for name in ('io', 'io_ns', 'io_own_ns'):
+        assert harness.exit_of(run, name)['code'] == 0, why

@@ -43,9 +43,12 @@ def test_placement_and_idempotence(tmp_path):
     twice = inject(once, fragments, target='js', context=CONTEXT,
                    file_name='e.js')
     assert twice == once
-    worker = inject('self.onmessage=1;', fragments, target='worker',
-                    context=CONTEXT, file_name='e.worker.js')
+    worker = inject('"use strict";self.onmessage=1;', fragments,
+                    target='worker', context=CONTEXT, file_name='e.worker.js')
     assert '// tail worker' in worker and '// head' not in worker
+    assert worker.startswith('"use strict";\nself.onmessage=1;')
+    assert inject(worker, fragments, target='worker', context=CONTEXT,
+                  file_name='e.worker.js') == worker
 
 
 def test_missing_anchor(tmp_path):

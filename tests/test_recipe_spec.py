@@ -36,7 +36,8 @@ def test_default_recipe_is_valid():
     assert 'ament_package' in recipe.host_tools
     rule = recipe.rule('rcutils')
     assert [p.file.name for p in rule.patches] == [
-        '0001-strerror_r-xsi-under-emscripten.patch']
+        '0001-strerror_r-xsi-under-emscripten.patch',
+        '0002-shared_library-no-dlinfo-under-emscripten.patch']
     assert rule.patches[0].applies_to('5.1.6')
     assert not rule.patches[0].applies_to('6.0.0')
     assert 'yaml' in recipe.rule('libyaml_vendor').depends
@@ -126,8 +127,9 @@ def test_overlay_merges(tmp_path):
     rule = recipe.rule('rcutils')
     assert rule.cmake_args == ['-DMINE=ON']
     assert [p.file.name for p in rule.patches] == [
-        '0001-strerror_r-xsi-under-emscripten.patch', 'x.patch']
-    assert rule.patches[1].file == (tmp_path / 'x.patch').resolve()
+        '0001-strerror_r-xsi-under-emscripten.patch',
+        '0002-shared_library-no-dlinfo-under-emscripten.patch', 'x.patch']
+    assert rule.patches[-1].file == (tmp_path / 'x.patch').resolve()
     assert recipe.rule('libyaml_vendor').depends == ['yaml', 'extra']
     assert recipe.files[-1] == Path(overlay).resolve()
 

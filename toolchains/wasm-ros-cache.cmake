@@ -28,3 +28,16 @@ set(PKG_CONFIG_EXECUTABLE "PKG_CONFIG_EXECUTABLE-NOTFOUND" CACHE FILEPATH
 
 # vendor packages: never download or build a bundled copy when one is installed
 set(FORCE_BUILD_VENDOR_PKG OFF CACHE BOOL "colcon-wasm: use installed packages")
+
+# Release optimisation level (--wasm-opt-level). Set as cache values: CMake's
+# Clang module appends its own " -O3 -DNDEBUG" to a toolchain file's
+# CMAKE_<LANG>_FLAGS_RELEASE_INIT, and the last -O wins.
+if(NOT COLCON_WASM_OPT_LEVEL)
+  set(COLCON_WASM_OPT_LEVEL 2)
+endif()
+set(CMAKE_C_FLAGS_RELEASE "-O${COLCON_WASM_OPT_LEVEL} -DNDEBUG" CACHE STRING
+  "colcon-wasm: --wasm-opt-level")
+set(CMAKE_CXX_FLAGS_RELEASE "-O${COLCON_WASM_OPT_LEVEL} -DNDEBUG" CACHE STRING
+  "colcon-wasm: --wasm-opt-level")
+set(CMAKE_EXE_LINKER_FLAGS_RELEASE "-O${COLCON_WASM_OPT_LEVEL}" CACHE STRING
+  "colcon-wasm: --wasm-opt-level")

@@ -5,6 +5,7 @@
 
 import json
 from pathlib import Path
+import shutil
 
 from colcon_core.logging import colcon_logger
 from colcon_core.plugin_system import satisfies_version
@@ -24,6 +25,17 @@ PATCHED_SOURCES = Path('.colcon_wasm') / 'source'
 
 """File in a package's build folder recording the toolchain settings."""
 SETTINGS_FILE = 'colcon_wasm_settings.json'
+
+
+def empty_build_folder(path):
+    """Remove everything inside a package's build folder, keeping the folder."""
+    if not path.is_dir():
+        return
+    for child in path.iterdir():
+        if child.is_dir() and not child.is_symlink():
+            shutil.rmtree(child)
+        else:
+            child.unlink()
 
 
 def patched_source_folder(build_base, pkg_name):
@@ -105,14 +117,18 @@ class WasmBuildTask(TaskExtensionPoint):
 
     def _clean_cache_on_new_settings(self, args, plan):
         """
-        Configure from scratch when Emscripten or the flags changed.
+        Configure from scratch when Emscripten, the flags or the source changed.
 
         The toolchain's flags initialize CMake's cached flags on the first
-        configure only, so a changed setting needs a fresh CMake cache.
+        configure only, so a changed setting needs a fresh CMake cache. The
+        source folder changes when a recipe adds or removes patches (the
+        patched copy replaces `src/`), and CMake refuses a cache made for
+        another source folder.
         """
         settings = {
             'emscripten': plan.emscripten.describe(),
             'flags': plan.settings.describe([]),
+            'source': str(Path(args.path).resolve()),
         }
         path = Path(args.build_base) / SETTINGS_FILE
         previous = None
@@ -122,7 +138,16 @@ class WasmBuildTask(TaskExtensionPoint):
             except ValueError:
                 previous = None
         if previous != settings:
-            if previous is not None:
+            if previous is not None and \
+                    previous.get('source') != settings['source']:
+                # object files newer than the other folder's sources would
+                # survive a fresh cache: start from an empty build folder
+                logger.info(
+                    f"Source folder of '{self.context.pkg.name}' changed to "
+                    f"'{settings['source']}': building from a fresh build "
+                    'folder')
+                empty_build_folder(Path(args.build_base))
+            elif previous is not None:
                 logger.info(
                     f"Toolchain settings of '{self.context.pkg.name}' changed"
                     ': configuring from a fresh CMake cache')

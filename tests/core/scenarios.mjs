@@ -17,6 +17,7 @@ const MAX_LINES = 400;
 async function start(ctx, name, role, opts = {}, extra = {}) {
   const args = [role];
   for (const [k, v] of Object.entries(opts)) args.push(`--${k}`, String(v));
+  args.push(...(extra.args || []));
   const rec = { exit: null, results: {}, messages: [], lines: [], waiters: [] };
   ctx.procs[name] = rec;
   const proc = await ctx.rt.spawn({
@@ -24,6 +25,8 @@ async function start(ctx, name, role, opts = {}, extra = {}) {
     args,
     name,
     env: extra.env || {},
+    stdin: extra.stdin,
+    files: extra.files,
     onLog: ({ text, severity, stream }) => {
       if (rec.lines.length < MAX_LINES) rec.lines.push({ stream, severity, text });
       if (text.startsWith('RESULT ')) {
@@ -359,6 +362,19 @@ const SCENARIOS = {
     ctx.extra.echo_batches = batches;
     ctx.extra.responses = responses;
   },
+};
+
+SCENARIOS.io = async (ctx) => {
+  // standard input, files and ROS_NAMESPACE reach the executable
+  await start(ctx, 'io', 'io', {}, {
+    stdin: '2\n3\nq\n',
+    files: { '/cfg/params.yaml': 'talker:\n  ros__parameters:\n    greeting: hi\n' },
+    env: { IO_FILE: '/cfg/params.yaml', ROS_NAMESPACE: 'robot1' },
+  });
+  await start(ctx, 'io_ns', 'io', {}, { env: { ROS_NAMESPACE: '/robot2' } });
+  await start(ctx, 'io_own_ns', 'io', {}, {
+    args: ['--ros-args', '-r', '__ns:=/mine'], env: { ROS_NAMESPACE: '/ignored' } });
+  await exits(ctx, ['io', 'io_ns', 'io_own_ns']);
 };
 
 /** Names of all scenarios. */

@@ -24,6 +24,52 @@ import { FromHost } from './protocol.mjs';
  */
 
 /**
+ * Turn `ROS_NAMESPACE` into a namespace remap, unless the arguments remap
+ * `__ns` already. Humble's rcl does not read the variable (a ROS 1 habit
+ * users keep); colcon-wasm honours it the way `ros2 run` users expect.
+ * @param {string[]} args
+ * @param {Object<string, string>} env
+ * @returns {string[]}
+ */
+export function withNamespaceFromEnvironment(args, env) {
+  const ns = env.ROS_NAMESPACE;
+  if (!ns || args.some((a) => a.startsWith('__ns:='))) return args;
+  return [...args, '--ros-args', '-r', `__ns:=${ns.startsWith('/') ? ns : '/' + ns}`];
+}
+
+/**
+ * Standard input from a text: Emscripten calls the reader once per byte and
+ * stops at null (end of file). No text: end of file at once (a worker has no
+ * terminal to read from).
+ * @param {string|null|undefined} text
+ * @returns {function(): (number|null)}
+ */
+export function stdinReader(text) {
+  const bytes = new TextEncoder().encode(text || '');
+  let next = 0;
+  return () => (next < bytes.length ? bytes[next++] : null);
+}
+
+/**
+ * Write the START message's files into the executable's file system (MEMFS).
+ * @param {Object<string, string|Uint8Array>|undefined} files
+ * @param {string} url the executable, for messages
+ */
+function writeFiles(files, url) {
+  const entries = Object.entries(files || {});
+  if (!entries.length) return;
+  const FS = globalThis.FS;
+  if (!FS || typeof FS.writeFile !== 'function') {
+    throw new Error(`${url} was linked without a file system (-sFILESYSTEM=0): cannot give it files`);
+  }
+  for (const [path, content] of entries) {
+    const dir = path.slice(0, path.lastIndexOf('/'));
+    if (dir) FS.mkdirTree(dir);
+    FS.writeFile(path, content);
+  }
+}
+
+/**
  * Start the executable described by a START message.
  * @param {object} msg the START message (see protocol.mjs)
  * @param {HostPlatform} platform
@@ -41,7 +87,7 @@ export async function startProcess(msg, platform) {
     const module = msg.wasmModule || await platform.compile(msg.wasmUrl);
     const env = msg.env || {};
     const Module = {
-      arguments: msg.args || [],
+      arguments: withNamespaceFromEnvironment(msg.args || [], env),
       thisProgram: msg.name,
       print: (text) => post({ type: FromHost.LOG, stream: 'stdout', text: String(text) }),
       printErr: (text) => post({ type: FromHost.LOG, stream: 'stderr', text: String(text) }),
@@ -55,9 +101,11 @@ export async function startProcess(msg, platform) {
           (err) => exit(1, true, `cannot instantiate ${msg.wasmUrl}: ${err && err.message}`));
         return {};
       },
+      stdin: stdinReader(msg.stdin),
       preRun: [() => {
         // Executables that do not link wasm_cpp get their environment here.
         if (typeof globalThis.ENV === 'object' && globalThis.ENV) Object.assign(globalThis.ENV, env);
+        writeFiles(msg.files, msg.url);
       }],
       onExit: (code) => {
         exit(code, code !== 0, code !== 0 ? `exited with code ${code}` : '');

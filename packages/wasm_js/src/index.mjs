@@ -10,7 +10,7 @@
  * @module wasm_js
  */
 
-export { IsolationError, NodeProcess, Runtime, severityOf } from './runtime.mjs';
+export { IsolationError, NodeProcess, Runtime, severityOf, stripAnsi } from './runtime.mjs';
 export { Tools } from './tools.mjs';
 export { BusClient, EventType, TakeMode, WaitKind } from './bus_client.mjs';
 export {

@@ -30,6 +30,17 @@ const ISOLATION_HELP =
   '(`colcon-wasm serve` does), and load it over http://localhost or https.';
 
 const SEVERITY_RE = /^\[(DEBUG|INFO|WARN|ERROR|FATAL)\]/;
+// rcutils colours its console output when isatty() says yes, which it does
+// under Emscripten: "\x1b[33m[WARN] ...\x1b[0m".
+const ANSI_SGR_RE = /\x1b\[[0-9;]*m/g;
+
+/**
+ * Remove ANSI colour codes (SGR sequences) from a log line.
+ * @param {string} text
+ */
+export function stripAnsi(text) {
+  return text.indexOf('\x1b') < 0 ? text : text.replace(ANSI_SGR_RE, '');
+}
 
 /**
  * Parse the severity of a log line: the ROS tag when there is one
@@ -42,6 +53,28 @@ export function severityOf(stream, text) {
   const m = SEVERITY_RE.exec(text);
   if (m) return m[1];
   return stream === 'stderr' ? 'ERROR' : 'INFO';
+}
+
+/**
+ * Check the `files` option of spawn(): absolute paths to text or bytes.
+ * @param {Object<string, string|Uint8Array>|undefined} files
+ * @param {string} name the executable, for messages
+ * @returns {Object<string, string|Uint8Array>}
+ */
+function checkedFiles(files, name) {
+  const out = {};
+  for (const [path, content] of Object.entries(files || {})) {
+    if (!path.startsWith('/') || path.split('/').includes('..')) {
+      throw new BusError(Code.INVALID_ARGUMENT,
+        `spawn '${name}': file path '${path}' must be absolute and must not contain '..'`);
+    }
+    if (typeof content !== 'string' && !(content instanceof Uint8Array)) {
+      throw new BusError(Code.INVALID_ARGUMENT,
+        `spawn '${name}': content of file '${path}' must be a string or a Uint8Array`);
+    }
+    out[path] = content;
+  }
+  return out;
 }
 
 function gidHex(words) {
@@ -75,7 +108,8 @@ export class NodeProcess {
       const onLog = this._options.onLog;
       if (onLog) {
         try {
-          onLog({ stream: m.stream, severity: severityOf(m.stream, m.text), text: m.text, name: this.name, pid: this.id });
+          const text = stripAnsi(m.text);
+          onLog({ stream: m.stream, severity: severityOf(m.stream, text), text, name: this.name, pid: this.id });
         } catch (e) {
           console.error(`onLog of '${this.name}' threw:`, e);
         }
@@ -250,6 +284,10 @@ export class Runtime {
    * @param {function({code: number|null, crashed: boolean, reason: string}): void} [spec.onExit]
    * @param {WebAssembly.Module} [spec.wasmModule] an already compiled module
    * @param {boolean} [spec.shareModule=true] compile the .wasm once and share it between spawns
+   * @param {string} [spec.stdin] text the executable reads as its standard input (then end of file);
+   *   without it standard input is empty
+   * @param {Object<string, string|Uint8Array>} [spec.files] files written into the executable's
+   *   file system before main() runs (absolute path → content), e.g. a `--params-file`
    * @returns {Promise<NodeProcess>}
    */
   async spawn(spec) {
@@ -267,6 +305,8 @@ export class Runtime {
     const args = (spec.args || []).map(String);
     const env = {};
     for (const [k, v] of Object.entries(spec.env || {})) env[k] = String(v);
+    const stdin = spec.stdin === undefined || spec.stdin === null ? null : String(spec.stdin);
+    const files = checkedFiles(spec.files, name);
     let wasmModule = spec.wasmModule || null;
     if (!wasmModule && spec.shareModule !== false) {
       try {
@@ -294,7 +334,7 @@ export class Runtime {
       proc._finish({ code, crashed: code !== 0, reason: code !== 0 ? `worker exited with code ${code}` : '' });
     });
     worker.postMessage({
-      type: ToHost.START, bus: this.bus.sab, pid, url, wasmUrl, glueFile, args, env, name, wasmModule,
+      type: ToHost.START, bus: this.bus.sab, pid, url, wasmUrl, glueFile, args, env, name, wasmModule, stdin, files,
       busModuleUrl: siblingUrl('bus_client.mjs'), hostModuleUrl: siblingUrl('host_common.mjs'),
     });
     return proc;

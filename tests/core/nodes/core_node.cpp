@@ -962,6 +962,41 @@ int role_misc()
 
 }  // namespace
 
+/**
+ * Role "io": what the runtime hands an executable besides the bus. Prints
+ * every argument, the whole standard input and the file named by IO_FILE.
+ */
+int role_io(int argc, char ** argv)
+{
+  for (int i = 0; i < argc; ++i) {
+    std::printf("ARG %d %s\n", i, argv[i]);
+  }
+  std::string in;
+  for (int c = std::getchar(); c != EOF; c = std::getchar()) {
+    in.push_back(c == '\n' ? '|' : static_cast<char>(c));
+  }
+  std::printf("STDIN %s\n", in.c_str());
+  const char * path = std::getenv("IO_FILE");
+  if (path != nullptr) {
+    std::FILE * f = std::fopen(path, "rb");
+    if (f == nullptr) {
+      std::printf("FILE-ERROR %s\n", path);
+      return 1;
+    }
+    std::string content;
+    char buf[256];
+    for (size_t n; (n = std::fread(buf, 1, sizeof(buf), f)) > 0; ) {
+      content.append(buf, n);
+    }
+    std::fclose(f);
+    for (char & c : content) {
+      if (c == '\n') {c = '|';}
+    }
+    std::printf("FILE %s\n", content.c_str());
+  }
+  return 0;
+}
+
 int main(int argc, char ** argv)
 {
   if (argc < 2) {
@@ -969,6 +1004,7 @@ int main(int argc, char ** argv)
     return 2;
   }
   const std::string role = argv[1];
+  if (role == "io") {return role_io(argc, argv);}
   for (int i = 2; i + 1 < argc; i += 2) {
     std::string k = argv[i];
     if (k.rfind("--", 0) != 0) {

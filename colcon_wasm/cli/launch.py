@@ -1,0 +1,56 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""`colcon-wasm launch`."""
+
+import sys
+
+from colcon_wasm.cli import CliExtensionPoint
+from colcon_wasm.launch import LaunchError
+from colcon_wasm.launch.command import execute
+from colcon_wasm.launch.command import make_plan
+from colcon_wasm.launch.install_space import InstallSpaceError
+
+
+def _positive(text):
+    value = float(text)
+    if value <= 0:
+        raise ValueError(text)
+    return value
+
+
+def add_runtime_arguments(parser):
+    """Add the options shared by run and launch."""
+    parser.add_argument(
+        '--install-base', default='install_wasm', metavar='DIR',
+        help='The install space of colcon build --wasm (default: install_wasm)')
+    parser.add_argument(
+        '--duration', type=_positive, metavar='S',
+        help='Stop every node after S seconds (default: run until they exit or Ctrl-C)')
+    parser.add_argument(
+        '--echo', action='append', default=[], metavar='TOPIC',
+        help='Print the decoded messages of a topic (repeatable)')
+    parser.add_argument(
+        '--print-plan', action='store_true',
+        help='Print each process with its arguments and exit without running it')
+
+
+class LaunchCommand(CliExtensionPoint):
+    """Run several nodes on one bus in Node.js, from PKG/EXE items or a launch file."""
+
+    def add_arguments(self, *, parser):  # noqa: D102
+        add_runtime_arguments(parser)
+        parser.add_argument(
+            'what', nargs='+', metavar='ITEM',
+            help='A launch file (.launch.xml/.launch.yaml) with name:=value arguments, '
+                 'PKG FILE for a launch file of a package, or PKG/EXE items')
+
+    def main(self, *, args):  # noqa: D102
+        try:
+            plan = make_plan(args.what, args.install_base)
+        except (LaunchError, InstallSpaceError) as e:
+            print('colcon-wasm launch: {}'.format(e), file=sys.stderr)
+            return 1
+        return execute(plan, install_base=args.install_base, duration=args.duration,
+                       echo=args.echo, print_plan=args.print_plan,
+                       command='colcon-wasm launch')

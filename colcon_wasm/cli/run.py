@@ -1,0 +1,31 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""`colcon-wasm run`."""
+
+import argparse
+
+from colcon_wasm.cli import CliExtensionPoint
+from colcon_wasm.cli.launch import add_runtime_arguments
+from colcon_wasm.launch import LaunchPlan
+from colcon_wasm.launch import NodeProcess
+from colcon_wasm.launch.command import execute
+
+
+class RunCommand(CliExtensionPoint):
+    """Run one executable of the install space in Node.js, like ros2 run."""
+
+    def add_arguments(self, *, parser):  # noqa: D102
+        add_runtime_arguments(parser)
+        parser.add_argument('package', metavar='PKG', help='The package name')
+        parser.add_argument('executable', metavar='EXE', help='The executable name')
+        parser.add_argument(
+            'arguments', nargs=argparse.REMAINDER, metavar='ARGS',
+            help='Arguments of the executable, e.g. --ros-args -r chatter:=news -p rate:=5 '
+                 '(everything after EXE goes to the executable: give the options of run '
+                 'before PKG)')
+
+    def main(self, *, args):  # noqa: D102
+        plan = LaunchPlan([NodeProcess(args.package, args.executable, arguments=args.arguments)])
+        return execute(plan, install_base=args.install_base, duration=args.duration,
+                       echo=args.echo, print_plan=args.print_plan, command='colcon-wasm run')

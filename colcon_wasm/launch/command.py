@@ -1,0 +1,83 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""What ``colcon-wasm run`` and ``colcon-wasm launch`` do, behind their CLI modules."""
+
+from pathlib import Path
+import sys
+
+from colcon_wasm.launch import LaunchError
+from colcon_wasm.launch import load_launch_file
+from colcon_wasm.launch import plan_items
+from colcon_wasm.launch import split_launch_arguments
+from colcon_wasm.launch.install_space import InstallSpace
+from colcon_wasm.launch.install_space import InstallSpaceError
+from colcon_wasm.launch.runner import find_launch_file
+from colcon_wasm.launch.runner import host_plan
+from colcon_wasm.launch.runner import LAUNCH_FILE_SUFFIXES
+from colcon_wasm.launch.runner import run_host
+
+
+def make_plan(values, install_base):
+    """
+    Make a plan from the positional arguments of ``launch``.
+
+    ``FILE [name:=value ...]``, ``PKG FILE [name:=value ...]`` (a launch file
+    in the package's share folder) or ``PKG/EXE [PKG/EXE ...]``.
+
+    :raises LaunchError: for arguments that are none of these
+    """
+    others, arguments = split_launch_arguments(values)
+    if not others:
+        raise LaunchError('name a launch file or PKG/EXE items, e.g. '
+                          'colcon-wasm launch demo_nodes/talker demo_nodes/listener')
+    install_space = InstallSpace(install_base) if Path(install_base).is_dir() else None
+    first = Path(others[0])
+    if len(others) == 1 and (first.is_file() or first.name.endswith(LAUNCH_FILE_SUFFIXES)):
+        if not first.is_file():
+            raise LaunchError("launch file '{}' does not exist".format(first))
+        return load_launch_file(first, arguments, install_space=install_space)
+    if len(others) == 2 and '/' not in others[0] and \
+            others[1].endswith(LAUNCH_FILE_SUFFIXES):
+        if install_space is None:
+            raise LaunchError("no install space at '{}': run 'colcon build --wasm' first, or "
+                              'pass --install-base DIR'.format(install_base))
+        path = find_launch_file(install_space, others[0], others[1])
+        return load_launch_file(path, arguments, install_space=install_space)
+    if arguments:
+        raise LaunchError('launch arguments ({}) need a launch file'.format(
+            ', '.join('{}:={}'.format(k, v) for k, v in arguments.items())))
+    return plan_items(others)
+
+
+def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, command,
+            out=None, err=None):
+    """
+    Resolve a plan against the install space and run it in Node.js (or print it).
+
+    :returns: the exit status (1 for bad input, else the Node host's)
+    """
+    out = out or sys.stdout
+    err = err or sys.stderr
+    try:
+        install_space = InstallSpace(install_base)
+        description = host_plan(plan, install_space, duration=duration, echo=echo)
+    except (LaunchError, InstallSpaceError) as e:
+        print('{}: {}'.format(command, e), file=err)
+        return 1
+    if print_plan:
+        for process in description['processes']:
+            print('[{}] {} {}'.format(process['label'], process['js'],
+                                      ' '.join(process['args'])).rstrip(), file=out)
+        return 0
+    from colcon_wasm import resources
+    from colcon_wasm.server import find_runtime
+    from colcon_wasm.server import runtime_entry
+    from colcon_wasm.server import ServeError
+    try:
+        bundled = resources.path('packages') / 'wasm_js' / 'src'
+        runtime_dir, _ = find_runtime(install_space, bundled)
+        return run_host(description, runtime_dir / runtime_entry(runtime_dir), bundled)
+    except (LaunchError, ServeError) as e:
+        print('{}: {}'.format(command, e), file=err)
+        return 1

@@ -1,0 +1,17 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""The one error type of launch-file loading."""
+
+
+class LaunchError(Exception):
+    """A launch file or item that cannot be run; names the file and line."""
+
+    def __init__(self, message, path=None, line=None):
+        """Format the message as ``path:line: message`` when the place is known."""
+        self.path = path
+        self.line = line
+        location = ''
+        if path is not None:
+            location = '{}{}: '.format(path, ':{}'.format(line) if line else '')
+        super().__init__(location + message)

@@ -1,0 +1,189 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""The HTTP server of ``colcon-wasm serve``.
+
+Every response carries the headers that make the page cross-origin isolated
+(``SharedArrayBuffer`` needs them): COOP ``same-origin``, COEP
+``require-corp`` and CORP ``same-origin``.  GET and HEAD only; no directory
+listing; HTTP/1.1 keep-alive; one thread per connection.
+"""
+
+import errno
+from http import HTTPStatus
+from http.server import BaseHTTPRequestHandler
+from http.server import ThreadingHTTPServer
+import shutil
+import socket
+from urllib.parse import parse_qs
+from urllib.parse import urlsplit
+
+from colcon_core.logging import colcon_logger
+from colcon_wasm.server.files import choose_body
+from colcon_wasm.server.files import CompressionCache
+from colcon_wasm.server.files import content_type
+from colcon_wasm.server.files import Refused
+from colcon_wasm.server.files import split_url_path
+
+logger = colcon_logger.getChild(__name__)
+
+ISOLATION_HEADERS = {
+    'Cross-Origin-Opener-Policy': 'same-origin',
+    'Cross-Origin-Embedder-Policy': 'require-corp',
+    'Cross-Origin-Resource-Policy': 'same-origin',
+}
+
+
+class ServeError(Exception):
+    """The server cannot start; the message says why and what to do."""
+
+
+class LauncherRequestHandler(BaseHTTPRequestHandler):
+    """Serve the Site of the server: files, the page and workspace.json."""
+
+    protocol_version = 'HTTP/1.1'
+    server_version = 'colcon-wasm'
+    sys_version = ''
+
+    def setup(self):
+        """Send small responses at once: no Nagle delay between headers and body."""
+        super().setup()
+        self.connection.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+
+    def do_GET(self):  # noqa: N802 the name http.server calls
+        """Answer a GET request."""
+        self._respond(send_body=True)
+
+    def do_HEAD(self):  # noqa: N802
+        """Answer a HEAD request."""
+        self._respond(send_body=False)
+
+    def _method_not_allowed(self):
+        self._error(HTTPStatus.METHOD_NOT_ALLOWED, 'only GET and HEAD are served',
+                    extra={'Allow': 'GET, HEAD'})
+
+    do_POST = do_PUT = do_DELETE = do_PATCH = do_OPTIONS = _method_not_allowed  # noqa: N815
+
+    def _common_headers(self):
+        for name, value in ISOLATION_HEADERS.items():
+            self.send_header(name, value)
+        self.send_header('X-Content-Type-Options', 'nosniff')
+        self.send_header('Cache-Control', 'no-cache')
+
+    def _error(self, status, reason, extra=None):
+        body = '{} {}: {}\n'.format(int(status), HTTPStatus(status).phrase, reason).encode()
+        self.send_response(status)
+        self._common_headers()
+        self.send_header('Content-Type', 'text/plain; charset=utf-8')
+        self.send_header('Content-Length', str(len(body)))
+        for name, value in (extra or {}).items():
+            self.send_header(name, value)
+        self.end_headers()
+        if self.command != 'HEAD':
+            self.wfile.write(body)
+
+    def _respond(self, send_body):
+        site = self.server.site
+        try:
+            url = urlsplit(self.path)
+            segments = split_url_path(url.path)
+            content = site.route(segments, parse_qs(url.query))
+        except Refused as e:
+            self._error(e.status, e.reason)
+            return
+        except UnicodeDecodeError:
+            self._error(HTTPStatus.BAD_REQUEST, 'the path is not valid UTF-8')
+            return
+        except Exception as e:  # noqa: B902 a broken template or manifest must not kill the server
+            logger.error('Serving {}: {}'.format(self.path, e))
+            self._error(HTTPStatus.INTERNAL_SERVER_ERROR, str(e))
+            return
+        if content.body is not None:
+            self._send(content.body, None, content.content_type, None, send_body)
+            return
+        try:
+            body_path, body, encoding, stat = choose_body(
+                content.path, self.headers.get('Accept-Encoding'), self.server.compression)
+        except OSError as e:
+            self._error(HTTPStatus.NOT_FOUND, 'cannot read: {}'.format(e.strerror))
+            return
+        suffix = '-' + encoding if encoding else ''
+        etag = '"{:x}-{:x}{}"'.format(stat.st_mtime_ns, stat.st_size, suffix)
+        if self.headers.get('If-None-Match') == etag:
+            self.send_response(HTTPStatus.NOT_MODIFIED)
+            self._common_headers()
+            self.send_header('ETag', etag)
+            self.send_header('Content-Length', '0')
+            self.end_headers()
+            return
+        self._send(body, body_path, content.content_type or content_type(content.path),
+                   encoding, send_body, etag=etag)
+
+    def _send(self, body, body_path, mime, encoding, send_body, etag=None):
+        length = len(body) if body is not None else body_path.stat().st_size
+        self.send_response(HTTPStatus.OK)
+        self._common_headers()
+        self.send_header('Content-Type', mime)
+        self.send_header('Content-Length', str(length))
+        self.send_header('Vary', 'Accept-Encoding')
+        if encoding:
+            self.send_header('Content-Encoding', encoding)
+        if etag:
+            self.send_header('ETag', etag)
+        self.end_headers()
+        if not send_body:
+            return
+        if body is not None:
+            self.wfile.write(body)
+        else:
+            with open(body_path, 'rb') as f:
+                shutil.copyfileobj(f, self.wfile, 1 << 20)
+
+    def log_message(self, format, *args):  # noqa: A002 the signature of http.server
+        """Log requests at debug level (errors stay visible in the page)."""
+        logger.debug('%s - %s' % (self.address_string(), format % args))
+
+
+class LauncherServer(ThreadingHTTPServer):
+    """A threading HTTP server for one Site."""
+
+    daemon_threads = True
+    request_queue_size = 512
+    allow_reuse_address = True
+
+    def __init__(self, site, host, port):
+        """
+        Bind to ``host:port`` (port 0 picks a free port).
+
+        :raises ServeError: when the address is taken or cannot be bound
+        """
+        self.site = site
+        self.compression = CompressionCache()
+        if ':' in host:
+            self.address_family = socket.AF_INET6
+        try:
+            super().__init__((host, port), LauncherRequestHandler)
+        except OSError as e:
+            if e.errno == errno.EADDRINUSE:
+                raise ServeError(
+                    'port {} on {} is already in use (another colcon-wasm serve, or another '
+                    'server?): stop it, or pass --port N (--port 0 picks a free port)'.format(
+                        port, host)) from None
+            if e.errno == errno.EACCES:
+                raise ServeError(
+                    'no permission to listen on port {} of {}: use a port above 1023, '
+                    'e.g. --port 8000'.format(port, host)) from None
+            raise ServeError('cannot listen on {}:{}: {}'.format(
+                host, port, e.strerror or e)) from None
+
+    @property
+    def url(self):
+        """Return the URL of the page."""
+        host, port = self.server_address[:2]
+        if ':' in host:
+            host = '[{}]'.format(host)
+        return 'http://{}:{}/'.format(host, port)
+
+    def handle_error(self, request, client_address):
+        """Log a failed connection without a traceback on the console."""
+        logger.debug('connection from {} failed'.format(client_address), exc_info=True)

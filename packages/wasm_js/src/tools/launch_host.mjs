@@ -1,0 +1,159 @@
+// Copyright 2026 colcon-wasm contributors
+// Licensed under the Apache License, Version 2.0
+
+/**
+ * The Node.js side of `colcon-wasm run` and `colcon-wasm launch`.
+ *
+ *   node launch_host.mjs '<plan JSON>'
+ *
+ * The plan (colcon_wasm/launch/runner.py) lists processes with absolute .js
+ * paths, arguments and environment, an optional duration, topics to echo,
+ * the types.json files and the URL of the Runtime module to use (the install
+ * space's, which matches the executables). All processes share one bus (one Runtime). Output is
+ * prefixed `[label]` and process events are reported as `ros2 launch` does.
+ * The exit status is 1 when a process crashed or exited with a non-zero
+ * code, 0 otherwise.
+ */
+
+import { readFileSync } from 'node:fs';
+import process from 'node:process';
+import { pathToFileURL } from 'node:url';
+
+import { TypeRegistry } from '../cdr.mjs';
+import { graphModel, subscriptionQos } from './graph.mjs';
+import { formatYaml } from './yaml.mjs';
+
+const out = (line) => process.stdout.write(`${line}\n`);
+const err = (line) => process.stderr.write(`${line}\n`);
+
+function loadRegistry(paths) {
+  const registry = new TypeRegistry();
+  for (const path of paths) {
+    try {
+      registry.add(JSON.parse(readFileSync(path, 'utf-8')));
+    } catch (e) {
+      err(`[WARNING] [launch]: cannot read the type descriptions ${path}: ${e.message}`);
+    }
+  }
+  return registry;
+}
+
+/** Print the messages of one topic, decoded, once it is in the graph. */
+function echoTopic(runtime, tools, registry, topic, stopping) {
+  let subscription = null;
+  const tryStart = () => {
+    if (subscription || stopping()) return;
+    const entry = graphModel(runtime.graph(), { toolsPid: tools.pid }).topics.find((t) => t.name === topic);
+    if (!entry || entry.types.length === 0) return;
+    const type = entry.types[0];
+    if (!registry.has(type)) {
+      err(`[ERROR] [echo]: cannot decode ${topic}: no type description of ${type}; build its `
+        + 'interface package with colcon build --wasm');
+      subscription = { close() {} };
+      return;
+    }
+    subscription = tools.subscribe({ topic, type, qos: subscriptionQos(entry.publisherQos) }, (messages) => {
+      for (const m of messages) {
+        let text;
+        try {
+          text = formatYaml(registry.decode(type, m.data));
+        } catch (e) {
+          text = `# ${e.message}`;
+        }
+        out(`[echo ${topic}]\n${text}\n---`);
+      }
+    });
+    subscription.catch((e) => err(`[ERROR] [echo]: cannot subscribe to ${topic}: ${e.message}`));
+  };
+  runtime.onGraphChange(tryStart);
+  tryStart();
+}
+
+async function main() {
+  const plan = JSON.parse(process.argv[2]);
+  const { Runtime } = await import(plan.runtime || new URL('../runtime.mjs', import.meta.url).href);
+  const runtime = await Runtime.create({});
+  const registry = loadRegistry(plan.types || []);
+  const handles = new Map();
+  const states = new Map();
+  let failed = false;
+  let stopping = false;
+  let finish;
+  const done = new Promise((resolve) => { finish = resolve; });
+
+  const checkDone = () => {
+    if ([...states.values()].every((s) => s !== 'running')) finish();
+  };
+
+  for (const proc of plan.processes) {
+    states.set(proc.label, 'running');
+    const onExit = ({ code, crashed, reason } = {}) => {
+      if (states.get(proc.label) !== 'running') return;
+      const stoppedByUs = stopping && !crashed;
+      if (crashed || (code !== 0 && code !== undefined && code !== null && !stoppedByUs)) {
+        failed = true;
+        states.set(proc.label, 'crashed');
+        err(`[ERROR] [${proc.label}]: process has died [exit code ${code ?? 'none'}${reason ? `, ${reason}` : ''}, `
+          + `cmd '${proc.js} ${proc.args.join(' ')}']`.replace(/ '\]$/, "']"));
+      } else if (stopping && reason === 'stopped') {
+        states.set(proc.label, 'exited');
+        out(`[INFO] [${proc.label}]: process stopped`);
+      } else {
+        states.set(proc.label, 'exited');
+        out(`[INFO] [${proc.label}]: process has finished cleanly`);
+      }
+      checkDone();
+    };
+    try {
+      const handle = await runtime.spawn({
+        url: pathToFileURL(proc.js).href,
+        args: proc.args,
+        env: proc.env,
+        name: proc.label,
+        onLog: ({ stream, text }) => {
+          const write = stream === 'stderr' ? err : out;
+          for (const line of String(text).split('\n')) if (line !== '') write(`[${proc.label}] ${line}`);
+        },
+        onExit,
+      });
+      handles.set(proc.label, handle);
+      out(`[INFO] [${proc.label}]: process started`);
+    } catch (e) {
+      onExit({ code: null, crashed: true, reason: e.message });
+    }
+  }
+
+  const stopAll = async (why) => {
+    if (stopping) return;
+    stopping = true;
+    out(`[INFO] [launch]: ${why}`);
+    await Promise.all([...handles.entries()].map(async ([label, handle]) => {
+      if (states.get(label) !== 'running') return;
+      await handle.stop();
+      if (states.get(label) === 'running') {
+        states.set(label, 'exited');
+        out(`[INFO] [${label}]: process stopped`);
+      }
+    }));
+    checkDone();
+  };
+
+  if (plan.echo && plan.echo.length) {
+    const tools = await runtime.tools();
+    for (const topic of plan.echo) echoTopic(runtime, tools, registry, topic, () => stopping);
+  }
+  if (plan.duration) {
+    setTimeout(() => stopAll(`stopping every process after ${plan.duration} s (--duration)`), plan.duration * 1000).unref();
+  }
+  process.on('SIGINT', () => stopAll('user interrupted with ctrl-c (SIGINT)'));
+  process.on('SIGTERM', () => stopAll('terminated (SIGTERM)'));
+  checkDone();
+  await done;
+  if (runtime.close) await runtime.close();
+  return failed ? 1 : 0;
+}
+
+main().then((code) => process.exit(code), (e) => {
+  err(`[ERROR] [launch]: ${e && e.stack ? e.stack : e}`);
+  process.exit(1);
+});

@@ -1,0 +1,177 @@
+// Copyright 2026 colcon-wasm contributors
+// Licensed under the Apache License, Version 2.0
+
+// The launcher page: reads the workspace that `colcon-wasm serve` embedded,
+// starts the wasm_js Runtime, and wires the views. `?run=pkg/exe` (repeatable,
+// optionally followed by arguments: `?run=pkg/exe --ros-args -p rate:=5`)
+// starts executables on load.
+
+import { h, setChildren, splitArgs } from './dom.mjs';
+import { Session } from './session.mjs';
+import { ExecutablesView } from './views/executables.mjs';
+import { ProcessesView } from './views/processes.mjs';
+import { LogsDock } from './views/logs.mjs';
+import { NodesView } from './views/nodes.mjs';
+import { TopicsView } from './views/topics.mjs';
+import { ServicesView } from './views/services.mjs';
+import { ActionsView } from './views/actions.mjs';
+import { ParametersView } from './views/parameters.mjs';
+
+const workspace = JSON.parse(document.getElementById('workspace').textContent);
+const app = document.getElementById('app');
+
+function header(session) {
+  const isolation = h('span.chip', {},
+    h('span.dot'), window.crossOriginIsolated ? 'cross-origin isolated' : 'not isolated');
+  isolation.classList.add(window.crossOriginIsolated ? 'ok' : 'bad');
+  const running = h('span.chip', { id: 'running-chip' }, h('span.dot'), '0 running');
+  session.on('processes', () => {
+    const n = session.runningCount();
+    running.lastChild.textContent = `${n} running`;
+    running.classList.toggle('ok', n > 0);
+  });
+  return h('header.top', {},
+    h('img.logo', { src: '/launcher/favicon.svg', alt: '' }),
+    h('h1', {}, 'colcon-wasm launcher'),
+    h('span.workspace', { title: workspace.install_base }, workspace.install_base),
+    h('span.spacer'),
+    running,
+    h('span.chip', { title: `wasm_js runtime from ${workspace.runtime_origin}` }, h('span.dot'), 'wasm_js'),
+    isolation);
+}
+
+/** The clear message of a page that cannot share memory between workers. */
+function isolationBanner() {
+  return h('div.banner.fatal#isolation-error', {},
+    h('h2', {}, 'This page is not cross-origin isolated: nodes cannot run here'),
+    h('div', {}, 'The nodes share memory (SharedArrayBuffer), which browsers allow only on pages '
+      + 'served with these two HTTP headers:'),
+    h('pre', {}, 'Cross-Origin-Opener-Policy: same-origin\nCross-Origin-Embedder-Policy: require-corp'),
+    h('div', { style: { marginTop: '8px' } }, 'Open the page through ',
+      h('code', {}, 'colcon-wasm serve'), ', which sends them, or add them to your web server.'));
+}
+
+function tabs(views) {
+  const nav = h('nav.tabs');
+  const buttons = new Map();
+  const show = (name) => {
+    for (const [n, v] of Object.entries(views)) {
+      v.element.hidden = n !== name;
+      buttons.get(n).classList.toggle('active', n === name);
+      if (n === name && v.shown) v.shown();
+    }
+    history.replaceState(null, '', `${location.search}#${name}`);
+  };
+  for (const [name, view] of Object.entries(views)) {
+    const count = h('span.count', {}, '0');
+    const button = h('button', { dataset: { tab: name }, onclick: () => show(name) }, view.title, count);
+    view.setCount = (n) => { count.textContent = String(n); };
+    buttons.set(name, button);
+    nav.append(button);
+  }
+  return { nav, show };
+}
+
+function runRequests() {
+  const params = new URLSearchParams(location.search);
+  return params.getAll('run').map((spec) => {
+    const words = splitArgs(spec);
+    const [pkg, exe] = (words[0] || '').split('/');
+    return { spec, pkg, exe, args: words.slice(1) };
+  });
+}
+
+async function main() {
+  const session = new Session(workspace);
+  // for the browser console: colconWasm.session.runtime, .graph, .processes
+  window.colconWasm = { session };
+  // start the runtime first: the views below build while its modules load
+  const starting = window.crossOriginIsolated ? session.start() : null;
+  if (starting) starting.catch(() => {});
+  const banners = h('div.banners');
+  const side = h('aside.side');
+  const main = h('main.main');
+  setChildren(app, header(session), side, main);
+
+  const processes = new ProcessesView(session);
+  const executables = new ExecutablesView(session, workspace);
+  side.append(executables.element, processes.element);
+
+  const views = {
+    nodes: new NodesView(session),
+    topics: new TopicsView(session),
+    services: new ServicesView(session),
+    actions: new ActionsView(session),
+    parameters: new ParametersView(session),
+  };
+  const { nav, show } = tabs(views);
+  const logs = new LogsDock(session);
+  processes.onSelect = (id) => logs.select(id);
+  // the main grid: banners and tabs, the visible view, the logs dock
+  const viewHost = h('div.viewhost', {}, ...Object.values(views).map((v) => v.element));
+  main.append(h('div', {}, banners, nav), viewHost, logs.element);
+  session.on('graph', (model) => {
+    views.nodes.setCount(model.nodes.length);
+    views.topics.setCount(model.topics.length);
+    views.services.setCount(model.services.length);
+    views.actions.setCount(model.actions.length);
+    views.parameters.setCount(model.nodes.length);
+  });
+  const wanted = location.hash.slice(1);
+  show(wanted in views ? wanted : 'topics');
+
+  if (!window.crossOriginIsolated) {
+    banners.append(isolationBanner());
+    executables.setEnabled(false);
+    document.body.dataset.state = 'not-isolated';
+    return;
+  }
+  for (const warning of workspace.warnings || []) {
+    banners.append(h('div.banner.warn', {}, warning));
+  }
+  if (workspace.packages.length === 0) {
+    banners.append(h('div.banner.warn', {}, h('h2', {}, 'No executables in this install space'),
+      `${workspace.install_base} has no package with a colcon-wasm manifest. Build your workspace `
+      + 'with colcon build --wasm, then reload this page.'));
+  }
+  try {
+    await starting;
+  } catch (e) {
+    showRuntimeError(banners, executables, e);
+    return;
+  }
+  executables.setEnabled(true);
+  const requests = runRequests();
+  for (const request of requests) {
+    const found = workspace.packages.find((p) => p.name === request.pkg)
+      ?.executables.find((e) => e.name === request.exe);
+    if (!found) {
+      banners.append(h('div.banner.warn', {}, `?run=${request.spec}: there is no executable `
+        + `'${request.exe}' in package '${request.pkg}' of this install space.`));
+      continue;
+    }
+    const proc = session.startProcess(request.pkg, request.exe, request.args);
+    if (requests.length === 1) logs.select(proc.id);
+  }
+  try {
+    await session.ready;
+  } catch (e) {
+    showRuntimeError(banners, executables, e);
+    return;
+  }
+  if (session.typeError) {
+    banners.append(h('div.banner.warn', {}, `Type descriptions: ${session.typeError}`));
+  }
+  document.body.dataset.state = 'ready';
+}
+
+function showRuntimeError(banners, executables, e) {
+  banners.append(h('div.banner.fatal#runtime-error', {}, h('h2', {}, 'The runtime did not start'),
+    h('pre', {}, String(e && e.stack ? e.stack : e))));
+  executables.setEnabled(false);
+  document.body.dataset.state = 'runtime-error';
+}
+
+main().catch((e) => {
+  app.append(h('div.banner.fatal', {}, h('h2', {}, 'The launcher failed'), h('pre', {}, String(e && e.stack ? e.stack : e))));
+});

@@ -1,0 +1,217 @@
+// Copyright 2026 colcon-wasm contributors
+// Licensed under the Apache License, Version 2.0
+
+// The page's one connection to the wasm_js Runtime: processes and their logs,
+// the live graph, and the tools process (echo, publish, call) — every view
+// goes through here, so the Runtime API is used in this file only.
+
+import { TypeRegistry } from '/wasm_js/cdr.mjs';
+import { graphModel, subscriptionQos } from '/wasm_js/tools/graph.mjs';
+
+const SEVERITY = /^\s*\[(DEBUG|INFO|WARN|WARNING|ERROR|FATAL)\]/;
+const MAX_LOG = 5000;
+
+let logSeq = 0;
+
+function severityOf(stream, text) {
+  const m = SEVERITY.exec(text);
+  if (m) return m[1] === 'WARNING' ? 'WARN' : m[1];
+  return stream === 'stderr' && /error|abort|exception|fatal/i.test(text) ? 'ERROR' : 'INFO';
+}
+
+export class Session {
+  constructor(workspace) {
+    this.workspace = workspace;
+    this.listeners = new Map();
+    this.processes = new Map();
+    this.nextId = 1;
+    this.runtime = null;
+    this.tools = null;
+    this.registry = new TypeRegistry();
+    this.typeError = null;
+    this.graph = graphModel(null);
+  }
+
+  on(event, callback) {
+    if (!this.listeners.has(event)) this.listeners.set(event, new Set());
+    this.listeners.get(event).add(callback);
+  }
+
+  emit(event, ...args) {
+    for (const cb of this.listeners.get(event) || []) {
+      try { cb(...args); } catch (e) { console.error(`a ${event} listener failed`, e); }
+    }
+  }
+
+  /**
+   * Start the Runtime; the type descriptions and the tools process follow in
+   * the background (`ready`), so that executables can start at once.
+   */
+  async start() {
+    const { Runtime } = await import(this.workspace.runtime);
+    const registry = this.loadTypes();
+    this.runtime = await Runtime.create({});
+    this.ready = (async () => {
+      this.registry = await registry;
+      this.tools = await this.runtime.tools();
+      this.runtime.onGraphChange((raw) => this.refreshGraph(raw));
+      this.refreshGraph(this.runtime.graph());
+      this.emit('ready');
+    })();
+    // awaited by the page after it started the ?run executables
+    this.ready.catch(() => {});
+  }
+
+  /** Load every package's types.json; a broken one is reported, the others load. */
+  async loadTypes() {
+    const registry = new TypeRegistry();
+    const problems = [];
+    await Promise.all(this.workspace.types.map(async (url) => {
+      try {
+        const response = await fetch(url);
+        if (!response.ok) throw new Error(`HTTP ${response.status}`);
+        registry.add(await response.json());
+      } catch (e) {
+        problems.push(`${url}: ${e.message}`);
+      }
+    }));
+    if (problems.length) this.typeError = `cannot load ${problems.join('; ')}`;
+    return registry;
+  }
+
+  refreshGraph(raw) {
+    this.graph = graphModel(raw, { toolsPid: this.tools ? this.tools.pid : undefined });
+    this.emit('graph', this.graph);
+  }
+
+  runningCount() {
+    let n = 0;
+    for (const p of this.processes.values()) if (p.state === 'starting' || p.state === 'running') n++;
+    return n;
+  }
+
+  /** Start an executable; several instances of one are numbered like ros2 launch does. */
+  startProcess(pkg, exe, args) {
+    const info = this.workspace.packages.find((p) => p.name === pkg)?.executables.find((e) => e.name === exe);
+    if (!info) throw new Error(`there is no executable ${pkg}/${exe} in this install space`);
+    const id = this.nextId++;
+    const proc = {
+      id, pkg, exe, args: [...args], label: `${exe}-${id}`, state: 'starting', log: [], exit: null, handle: null,
+      started: performance.now(),
+    };
+    this.processes.set(id, proc);
+    this.addLog(proc, { severity: 'SYSTEM', text: `starting ${pkg}/${exe} ${args.join(' ')}`.trim() });
+    this.emit('processes');
+    this.runtime.spawn({
+      url: new URL(info.url, location.href).href,
+      args: proc.args,
+      name: proc.label,
+      onLog: ({ stream, text }) => this.addLog(proc, { stream, severity: severityOf(stream, text), text }),
+      onExit: (exit) => this.exited(proc, exit),
+    }).then((handle) => {
+      proc.handle = handle;
+      if (proc.state === 'starting') proc.state = 'running';
+      if (proc.stopRequested) handle.stop();
+      this.emit('processes');
+    }, (error) => {
+      this.exited(proc, { code: null, crashed: true, reason: error && error.message ? error.message : String(error), stack: error && error.stack });
+    });
+    return proc;
+  }
+
+  exited(proc, exit) {
+    if (proc.state === 'exited' || proc.state === 'crashed' || proc.state === 'stopped') return;
+    proc.exit = exit || {};
+    if (proc.stopRequested && !proc.exit.crashed) {
+      proc.state = 'stopped';
+      this.addLog(proc, { severity: 'SYSTEM', text: `${proc.label} stopped` });
+    } else if (proc.exit.crashed || (proc.exit.code !== 0 && proc.exit.code !== undefined && proc.exit.code !== null)) {
+      proc.state = 'crashed';
+      const code = proc.exit.code === null || proc.exit.code === undefined ? '' : ` (exit code ${proc.exit.code})`;
+      this.addLog(proc, {
+        severity: 'ERROR', crash: true,
+        text: `${proc.exit.reason || 'the process died'}${code}. The other nodes go on.`,
+        detail: proc.exit.stack || null,
+      });
+    } else {
+      proc.state = 'exited';
+      this.addLog(proc, { severity: 'SYSTEM', text: `${proc.label} finished (exit code ${proc.exit.code ?? 0})` });
+    }
+    this.emit('processes');
+  }
+
+  addLog(proc, entry) {
+    const lines = entry.crash ? [entry.text] : String(entry.text).split('\n').filter((l) => l !== '');
+    for (const text of lines) {
+      const e = { ...entry, text, seq: logSeq++, time: performance.now() };
+      proc.log.push(e);
+      if (proc.log.length > MAX_LOG) proc.log.splice(0, proc.log.length - MAX_LOG);
+      this.emit('log', proc, e);
+    }
+  }
+
+  stopProcess(id) {
+    const proc = this.processes.get(id);
+    if (!proc) return;
+    proc.stopRequested = true;
+    this.addLog(proc, { severity: 'SYSTEM', text: `stopping ${proc.label}` });
+    if (proc.handle) {
+      proc.handle.stop().then(() => this.exited(proc, { code: null, crashed: false, reason: 'stopped' }),
+        (e) => this.addLog(proc, { severity: 'ERROR', text: `stopping failed: ${e.message}` }));
+    }
+  }
+
+  forgetFinished() {
+    for (const [id, p] of this.processes) if (p.state !== 'starting' && p.state !== 'running') this.processes.delete(id);
+    this.emit('processes');
+  }
+
+  // ---------------------------------------------------------------- tools
+
+  /**
+   * Subscribe to a topic: onBatch([{bytes, time, seq}]). Returns {close()} at
+   * once. The QoS matches the topic's publishers (as ros2 topic echo does).
+   */
+  subscribe(topic, type, onBatch) {
+    let seq = 0;
+    let closed = false;
+    const entry = this.graph.topics.find((t) => t.name === topic);
+    const qos = subscriptionQos(entry ? entry.publisherQos : []);
+    const pending = this.tools.subscribe({ topic, type, qos }, (messages) => {
+      if (closed) return;
+      const now = performance.now();
+      onBatch(messages.map((m) => ({ bytes: m.data, info: m.info, time: now, seq: ++seq })));
+    });
+    pending.catch((e) => console.error(`subscribing to ${topic} failed:`, e));
+    return {
+      ready: pending,
+      close: () => {
+        closed = true;
+        pending.then((s) => s.close()).catch(() => {});
+      },
+    };
+  }
+
+  /** A publisher of the tools process: {publish(bytes) -> Promise, close()}. */
+  publisher(topic, type) {
+    const pending = this.tools.advertise({ topic, type, qos: {} });
+    return {
+      publish: async (bytes) => (await pending).publish(bytes),
+      close: () => pending.then((p) => p.close()).catch(() => {}),
+    };
+  }
+
+  /** Call a service with request bytes; resolves to the response bytes. */
+  async call(service, type, bytes, timeoutMs) {
+    const response = await this.tools.call({ service, type, qos: {}, timeoutMs }, bytes);
+    return response.data;
+  }
+
+  /** The {call, subscribe} pair the action and parameter clients use. */
+  toolsBus() {
+    return {
+      call: (service, type, bytes, timeoutMs) => this.call(service, type, bytes, timeoutMs),
+      subscribe: (topic, type, onBatch) => this.subscribe(topic, type, onBatch),
+    };
+  }
+}

@@ -1,0 +1,77 @@
+// Copyright 2026 colcon-wasm contributors
+// Licensed under the Apache License, Version 2.0
+
+// The executables of the install space, grouped by package: run any of them
+// with arguments, as often as wanted (each run is a new process).
+
+import { formatBytes, h, splitArgs } from '../dom.mjs';
+
+export class ExecutablesView {
+  constructor(session, workspace) {
+    this.session = session;
+    this.buttons = [];
+    const filter = h('input.filter', {
+      type: 'search', placeholder: 'Filter executables…', oninput: () => this.filter(filter.value),
+    });
+    this.list = h('div.packages');
+    let total = 0;
+    for (const pkg of workspace.packages) {
+      const group = h('details.package', { open: true, dataset: { package: pkg.name } },
+        h('summary', {}, pkg.name, pkg.version ? h('span.version', {}, pkg.version) : null));
+      for (const exe of pkg.executables) {
+        group.append(this.row(pkg, exe));
+        total++;
+      }
+      this.list.append(group);
+    }
+    if (total === 0) this.list.append(h('div.empty', {}, 'No executables found.'));
+    this.element = h('section.executables', {},
+      h('h2', {}, 'Executables', h('span.count', {}, String(total))),
+      total > 6 ? filter : null, this.list);
+  }
+
+  row(pkg, exe) {
+    const args = h('input', {
+      type: 'text', placeholder: '--ros-args -r chatter:=news -p rate:=2',
+      spellcheck: false, 'aria-label': `arguments of ${pkg.name}/${exe.name}`,
+      onkeydown: (e) => { if (e.key === 'Enter') run(); },
+    });
+    const error = h('div.error-text');
+    const item = h('div.exe', { dataset: { exe: `${pkg.name}/${exe.name}` }, title: exe.url });
+    const run = () => {
+      error.textContent = '';
+      let argv;
+      try {
+        argv = splitArgs(args.value);
+      } catch (e) {
+        error.textContent = `arguments: ${e.message}`;
+        item.classList.add('expanded');
+        return;
+      }
+      this.session.startProcess(pkg.name, exe.name, argv);
+    };
+    const button = h('button.run', { onclick: run, title: `Start ${pkg.name}/${exe.name}` }, '▶ Run');
+    this.buttons.push(button);
+    const toggle = h('button.icon', {
+      title: 'Arguments', onclick: () => { item.classList.toggle('expanded'); args.focus(); },
+    }, '⋯');
+    item.append(
+      h('div.row', {}, h('span.name', {}, exe.name),
+        h('span.size', { title: 'download size (gzip)' }, formatBytes(exe.gzip_size || exe.size)),
+        toggle, button),
+      h('div.args', {}, args,
+        h('div.hint', {}, 'ROS arguments as on the command line; Enter runs it.'), error));
+    return item;
+  }
+
+  filter(text) {
+    const needle = text.trim().toLowerCase();
+    for (const item of this.list.querySelectorAll('.exe')) {
+      item.hidden = needle !== '' && !item.dataset.exe.toLowerCase().includes(needle);
+    }
+  }
+
+  setEnabled(enabled) {
+    for (const b of this.buttons) b.disabled = !enabled;
+  }
+}
