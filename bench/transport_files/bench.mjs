@@ -12,6 +12,8 @@ const SIZES = [64, 1024, 64 * 1024, 1024 * 1024];
 /** Latency samples per size (ours and raw ring; the poll design takes ~10 ms each). */
 const LATENCY_COUNT = { 64: 2000, 1024: 2000, 65536: 500, 1048576: 100 };
 const POLL_COUNT = 20;
+/** Round trips before measuring (JIT warm-up). */
+const WARMUP = { 64: 2000, 1024: 2000, 65536: 200, 1048576: 20 };
 
 function percentile(sorted, p) {
   return sorted[Math.min(sorted.length - 1, Math.floor(p * sorted.length))];
@@ -91,7 +93,7 @@ class Bench {
     const rt = await this.runtime();
     try {
       const pong = await this.spawn(rt, 'pong', { size });
-      const ping = await this.spawn(rt, 'ping', { size, count: LATENCY_COUNT[size], warmup: 200 });
+      const ping = await this.spawn(rt, 'ping', { size, count: LATENCY_COUNT[size], warmup: WARMUP[size], 'settle-ms': 500 });
       await ping.wait('p50_us');
       await Promise.all([ping.proc.exited, pong.proc.exited]);
       return { p50: Number(ping.results.p50_us), p99: Number(ping.results.p99_us), n: Number(ping.results.count) };
@@ -182,8 +184,10 @@ class Bench {
     try {
       const pongDone = Bench.reply(b);
       const pingDone = Bench.reply(a);
+      // The same settling time as ours before measuring.
+      await new Promise((r) => setTimeout(r, 500));
       b.postMessage({ role: 'pong', rings, size });
-      a.postMessage({ role: 'ping', rings, size, count: LATENCY_COUNT[size], warmup: 200 });
+      a.postMessage({ role: 'ping', rings, size, count: LATENCY_COUNT[size], warmup: WARMUP[size] });
       const r = await pingDone;
       await pongDone;
       return stats(r.samples);

@@ -292,7 +292,7 @@ var LibraryWasmBus = {
   wasm_bus_publish: function(ep, data, len, timeoutMs, seq) {
     try {
       WasmBus.heapFor(Math.max(data + len, seq + 8));
-      var s = WasmBus.client.publish(ep, WasmBus.hu8.subarray(data, data + len), timeoutMs);
+      var s = WasmBus.client.publishFrom(ep, WasmBus.hu8, data, len, timeoutMs);
       if (seq) {
         WasmBus.hi32[seq >> 2] = s % 4294967296;
         WasmBus.hi32[(seq >> 2) + 1] = Math.floor(s / 4294967296);

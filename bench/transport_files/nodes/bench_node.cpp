@@ -32,6 +32,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "wasm_cpp/wasm_cpp.hpp"
@@ -131,6 +132,9 @@ int ping()
   auto pub = must(wasm_cpp::Publisher::make(n.node, "/bench/ping", "bench/msg/Bytes", latency_qos()), "pub");
   auto sub = must(wasm_cpp::Subscription::make(n.node, "/bench/pong", "bench/msg/Bytes", latency_qos()), "sub");
   n.wait_graph([&]() {return pub->matched_subscription_count() > 0 && sub->matched_publisher_count() > 0;});
+  // Let the start-up work of both processes (their pthread pools' last
+  // garbage collections, JIT) finish before measuring.
+  std::this_thread::sleep_for(std::chrono::milliseconds(opt("settle-ms", 0)));
   std::vector<uint8_t> payload(size, 0x5a);
   std::vector<double> rtt;
   rtt.reserve(static_cast<size_t>(count));

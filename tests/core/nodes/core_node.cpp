@@ -720,6 +720,7 @@ int role_callbacks()
   Status s = sub->set_on_new_message_callback(&on_new, nullptr);
   if (!s.ok()) {
     out("RESULT callbacks_supported=0 code=%d", static_cast<int>(s.code()));
+    out("MESSAGE callbacks: %s", s.message().c_str());
     return 0;
   }
   for (uint32_t i = 3; i < 8; ++i) {

@@ -30,9 +30,9 @@ constexpr size_t kGidSize = 16;
 
 /// The globally unique id of an endpoint (publisher, subscription, service, client) or node.
 /**
- * Unique on one bus for its whole lifetime (ids are never reused while the bus
- * lives). Layout (little endian): bus id (4 bytes), process id (4), entity
- * serial (4), entity kind (4). Compare with ==.
+ * Unique on one bus for its whole lifetime (serials are never reused while
+ * the bus lives). Layout (four little-endian 32-bit words): bus id, process
+ * id, entity kind << 24 | registry index, serial. Compare with ==.
  */
 struct Gid
 {

@@ -1,0 +1,45 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""
+The core without pthreads (`colcon build --wasm --wasm-no-pthread`).
+
+The same test nodes, built without threads: messages, services and waits
+work the same; new-data callbacks, which need a listener thread, say so.
+"""
+
+from core import harness
+import pytest
+
+UNSUPPORTED = '3'
+
+
+@pytest.fixture(scope='module')
+def nopthread():
+    return harness.build(colcon_args=['--wasm-no-pthread'])
+
+
+def test_no_pthread_build_has_no_worker_script(nopthread):
+    assert nopthread.core_node.is_file()
+    assert not (nopthread.bin / 'core_node.worker.js').exists()
+
+
+@pytest.mark.parametrize('scenario', ['lossless', 'services', 'wait'])
+def test_no_pthread_delivery_services_and_waits(nopthread, scenario):
+    run = harness.run_node(nopthread, scenario)
+    assert run['ok'], harness.explain(run)
+    for name, proc in run['processes'].items():
+        assert proc['exit']['code'] in (0, None), (name, harness.explain(run))
+    if scenario == 'lossless':
+        sub = harness.results(run, 'sub')
+        assert (sub['received'], sub['out_of_order']) == ('100000', '0')
+
+
+def test_no_pthread_callbacks_are_unsupported_with_a_reason(nopthread):
+    run = harness.run_node(nopthread, 'callbacks')
+    r = harness.results(run, 'callbacks')
+    assert r['callbacks_supported'] == '0', harness.explain(run)
+    assert r['code'] == UNSUPPORTED
+    message = run['processes']['callbacks']['messages'][0]
+    assert 'need a listener thread: build with pthreads' in message, message
+    assert '--wasm-no-pthread' in message
