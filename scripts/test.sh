@@ -9,4 +9,5 @@ python=python3
 if [ -x .venv/bin/python ]; then
   python=.venv/bin/python
 fi
-exec "$python" -m pytest -q tests "$@"
+# -rfEs: why each test failed, errored or skipped; --durations: where time goes
+exec "$python" -m pytest -q -rfEs --durations=25 tests "$@"
