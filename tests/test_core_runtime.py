@@ -12,6 +12,7 @@ import os
 from pathlib import Path
 import shutil
 import subprocess
+import time
 
 from core import harness
 import pytest
@@ -151,3 +152,64 @@ def test_stdin_files_and_ros_namespace_reach_the_executable(platform):
     assert 'STDIN ' in own, why
     for name in ('io', 'io_ns', 'io_own_ns'):
         assert harness.exit_of(run, name)['code'] == 0, why
+
+
+@pytest.mark.parametrize('platform', ['node', 'chromium'])
+def test_open_stdin_is_read_line_by_line_like_a_terminal(platform):
+    """spawn(stdin: true): writeStdin() lines arrive while the node runs."""
+    run = harness.run(platform, 'stdin_pipe')
+    why = harness.explain(run)
+    extra = run['extra']
+    # the first line was read before the pipe was closed (not at exit)
+    assert extra['before_close'] is True, why
+    # the default build has threads: one printed while main() was in read()
+    assert extra['threads'] is True, why
+    assert 'THREAD 2' in _lines(run, 'lines'), why
+    # 3000 lines (twice the pipe) + 'last': all, in order, then end of file
+    assert extra['line_count'] == 3003, why
+    assert extra['in_order'] is True, why
+    assert extra['tail'] == ['LINE 3002 last', 'EOF 3002'], why
+    assert harness.exit_of(run, 'lines')['code'] == 0, why
+    assert 'has ended' in extra['late_write'] or 'closed' in extra['late_write'], why
+
+
+def test_colcon_wasm_run_gives_the_node_its_standard_input():
+    """`colcon-wasm run` forwards its stdin line by line, as `ros2 run` does."""
+    import select
+    import sys
+    core = harness.get_build()
+    command = [str(Path(sys.executable).parent / 'colcon-wasm'), 'run',
+               '--install-base', str(core.workspace / 'install_wasm'),
+               'core_test_nodes', 'core_node', 'lines']
+    process = subprocess.Popen(command, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                               stderr=subprocess.STDOUT, text=True, bufsize=1)
+    seen = []
+
+    def read_until(text, seconds=60):
+        deadline = time.monotonic() + seconds
+        while time.monotonic() < deadline:
+            ready, _, _ = select.select([process.stdout], [], [], 0.5)
+            if ready:
+                line = process.stdout.readline()
+                if not line:
+                    break
+                seen.append(line.rstrip('\n'))
+                if text in line:
+                    return
+        raise AssertionError(f'no {text!r} from colcon-wasm run:\n' + '\n'.join(seen))
+
+    try:
+        read_until('READY')
+        process.stdin.write('typed while it runs\n')
+        process.stdin.flush()
+        # the line arrives while stdin is still open: the node reads like a terminal's
+        read_until('LINE 1 typed while it runs')
+        process.stdin.write('second\n')
+        process.stdin.close()  # end of file
+        read_until('EOF 2')
+        assert process.wait(timeout=60) == 0, '\n'.join(seen)
+    finally:
+        if process.poll() is None:
+            process.kill()
+            process.wait()
+    assert '[core_node-1] LINE 2 second' in seen

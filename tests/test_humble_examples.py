@@ -127,17 +127,28 @@ def test_service_and_client(platform):
 
 
 def test_async_client(platform):
-    """The async client reads the numbers to add from its standard input."""
+    """The async client reads the numbers to add from its standard input, typed as a user would."""
     report = run(platform, [
         {'spawn': 'service', 'exe': platform.exe('examples_rclcpp_minimal_service',
                                                  'service_main')},
+        # an open pipe: the example quits at once on 'q' (or end of file), so
+        # 'q' is typed only after the results arrived
         {'spawn': 'client', 'exe': platform.exe('examples_rclcpp_async_client', 'client_main'),
-         'stdin': '2\n3\n40\n2\nq\n'},
-        {'wait': 'client', 'regex': r'Result of \d+ \+ \d+ is: \d+', 'count': 2, 'timeout': 30},
+         'stdin': True},
+        {'wait': 'client', 'text': 'insert the first one', 'timeout': 30},
+        {'stdin': 'client', 'text': '2\n3\n'},
+        {'wait': 'client', 'text': 'Result of 2 + 3 is: 5', 'timeout': 30},
+        {'stdin': 'client', 'text': '40\n'},
+        {'wait': 'client', 'text': 'Insert the second number', 'count': 2, 'timeout': 30},
+        {'stdin': 'client', 'text': '2\n'},
+        {'wait': 'client', 'text': 'Result of 40 + 2 is: 42', 'timeout': 30},
+        {'stdin': 'client', 'text': 'q\n'},
+        {'exit': 'client', 'timeout': 30},
     ])
     pattern = re.compile(r'Result of (\d+) \+ (\d+) is: (\d+)')
     results = [pattern.search(t) for t in lines(report, 'client')]
     assert [m.groups() for m in results if m] == [('2', '3', '5'), ('40', '2', '42')]
+    assert report['exits']['client']['code'] == 0
 
 
 ACTION_SERVER = 'examples_rclcpp_minimal_action_server'
@@ -172,8 +183,15 @@ def test_action_feedback(platform):
         {'exit': 'client', 'timeout': 60},
     ])
     feedback = [t for t in lines(report, 'client') if 'Next number in sequence received' in t]
-    assert len(feedback) >= 9, explain(report)
-    assert feedback[-1].endswith('55')
+    # The server publishes its first feedback right after accepting the goal.
+    # When that feedback and the goal response are ready in the same wait,
+    # rclcpp_action's client takes the feedback first (ClientBase::is_ready
+    # checks feedback before goal responses) and drops it as "feedback for
+    # unknown goal": rclcpp behaves so natively too. The other 8 must arrive,
+    # in order.
+    assert len(feedback) >= 8, explain(report)
+    numbers = [int(t.rsplit(': ', 1)[-1]) for t in feedback]
+    assert numbers == sorted(numbers) and numbers[-8:] == [2, 3, 5, 8, 13, 21, 34, 55], numbers
     assert report['exits']['client']['code'] == 0
 
 

@@ -28,4 +28,5 @@ class RunCommand(CliExtensionPoint):
     def main(self, *, args):  # noqa: D102
         plan = LaunchPlan([NodeProcess(args.package, args.executable, arguments=args.arguments)])
         return execute(plan, install_base=args.install_base, duration=args.duration,
-                       echo=args.echo, print_plan=args.print_plan, command='colcon-wasm run')
+                       echo=args.echo, print_plan=args.print_plan, command='colcon-wasm run',
+                       stdin=True)

@@ -51,9 +51,11 @@ def make_plan(values, install_base):
 
 
 def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, command,
-            out=None, err=None):
+            out=None, err=None, stdin=False):
     """
     Resolve a plan against the install space and run it in Node.js (or print it).
+
+    With ``stdin`` the one process of the plan reads this process' standard input.
 
     :returns: the exit status (1 for bad input, else the Node host's)
     """
@@ -61,7 +63,8 @@ def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, com
     err = err or sys.stderr
     try:
         install_space = InstallSpace(install_base)
-        description = host_plan(plan, install_space, duration=duration, echo=echo)
+        description = host_plan(plan, install_space, duration=duration, echo=echo,
+                                stdin=stdin)
     except (LaunchError, InstallSpaceError) as e:
         print('{}: {}'.format(command, e), file=err)
         return 1

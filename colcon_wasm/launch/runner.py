@@ -54,9 +54,12 @@ def find_launch_file(install_space, package, file_name):
     return matches[0]
 
 
-def host_plan(plan, install_space, *, duration=None, echo=()):
+def host_plan(plan, install_space, *, duration=None, echo=(), stdin=False):
     """
     Describe a plan for ``launch_host.mjs``: absolute paths, no lookups left.
+
+    With ``stdin`` the (single) process reads this command's standard input,
+    as with ``ros2 run``; launched processes get none, as with ``ros2 launch``.
 
     :raises LaunchError: for an executable that is not in the install space
     """
@@ -76,6 +79,7 @@ def host_plan(plan, install_space, *, duration=None, echo=()):
         'processes': processes,
         'duration': duration,
         'echo': list(echo),
+        'stdin': bool(stdin) and len(processes) == 1,
         'types': [str(p) for p in install_space.type_description_files()],
     }
 

@@ -29,6 +29,7 @@ async function start(ctx, name, role, opts = {}, extra = {}) {
     files: extra.files,
     onLog: ({ text, severity, stream }) => {
       if (rec.lines.length < MAX_LINES) rec.lines.push({ stream, severity, text });
+      if (extra.onText) extra.onText(text);
       if (text.startsWith('RESULT ')) {
         for (const kv of text.slice(7).split(' ')) {
           const eq = kv.indexOf('=');
@@ -375,6 +376,47 @@ SCENARIOS.io = async (ctx) => {
   await start(ctx, 'io_own_ns', 'io', {}, {
     args: ['--ros-args', '-r', '__ns:=/mine'], env: { ROS_NAMESPACE: '/ignored' } });
   await exits(ctx, ['io', 'io_ns', 'io_own_ns']);
+};
+
+SCENARIOS.stdin_pipe = async (ctx) => {
+  // an open standard input: lines arrive while the program runs, a write
+  // larger than the pipe waits for the reader, close gives end of file
+  const texts = []; // every line (rec.lines is capped)
+  const proc = await start(ctx, 'lines', 'lines', {}, { stdin: true, onText: (t) => texts.push(t) });
+  const rec = ctx.procs.lines;
+  const seen = (text, timeoutMs = 20000) => new Promise((resolve, reject) => {
+    const t0 = performance.now();
+    const check = () => {
+      const line = rec.lines.find((l) => l.text.startsWith(text));
+      if (line) resolve(line.text);
+      else if (rec.exit) reject(new Error(`lines exited before printing '${text}': ${rec.lines.map((l) => l.text).join(' | ')}`));
+      else if (performance.now() - t0 > timeoutMs) reject(new Error(`no '${text}' within ${timeoutMs} ms: ${rec.lines.map((l) => l.text).join(' | ')}`));
+      else setTimeout(check, 5);
+    };
+    check();
+  });
+  ctx.extra.threads = (await seen('READY')).endsWith('threads=1');
+  // a thread prints while main() sleeps in read(): its printf is proxied to main
+  if (ctx.extra.threads) await seen('THREAD 2');
+  await proc.writeStdin('first line\n');
+  await seen('LINE 1 first line');
+  ctx.extra.before_close = rec.exit === null;
+  // 3000 lines of 40 bytes: twice the pipe's 64 KiB
+  const big = Array.from({ length: 3000 }, (_, i) => `row ${String(i).padStart(35, '0')}`).join('\n') + '\n';
+  await proc.writeStdin(big);
+  await proc.writeStdin(new TextEncoder().encode('last\n'));
+  await proc.closeStdin();
+  await exits(ctx, ['lines']);
+  const got = texts.filter((t) => t.startsWith('LINE ') || t.startsWith('EOF '));
+  ctx.extra.line_count = got.length;
+  ctx.extra.in_order = got.slice(1, 3001).every((t, i) => t === `LINE ${i + 2} row ${String(i).padStart(35, '0')}`);
+  ctx.extra.tail = got.slice(-2);
+  try {
+    await proc.writeStdin('too late\n');
+    ctx.extra.late_write = 'accepted';
+  } catch (e) {
+    ctx.extra.late_write = e.message;
+  }
 };
 
 /** Names of all scenarios. */

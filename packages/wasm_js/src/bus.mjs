@@ -56,6 +56,35 @@ const E_NAME_HASH = 11;
 const encoder = new TextEncoder();
 const decoder = new TextDecoder();
 
+/** How often lockAsync() re-checks whether the lock's owner died (ms). */
+const LOCK_RECHECK_MS = 50;
+
+/**
+ * Atomics.waitAsync for at most `ms`, with a timer beside it: a pending
+ * waitAsync does not keep Node.js's event loop alive, so a process whose
+ * only pending work is this wait would otherwise quit in the middle of it
+ * (exit code 13). The timer also bounds the wait where the notify never
+ * comes (an owner that died holding the lock).
+ * @param {Int32Array} i32
+ * @param {number} index
+ * @param {number} value
+ * @param {number} ms
+ * @returns {Promise<void>}
+ */
+export async function waitAsyncAlive(i32, index, value, ms) {
+  const r = Atomics.waitAsync(i32, index, value, ms);
+  if (!r.async) return;
+  let timer;
+  const alive = new Promise((resolve) => {
+    timer = setTimeout(resolve, ms + 1);
+  });
+  try {
+    await Promise.race([r.value, alive]);
+  } finally {
+    clearTimeout(timer);
+  }
+}
+
 /** Wall-clock milliseconds since the epoch with sub-millisecond resolution. */
 const ORIGIN = (typeof performance !== 'undefined' && performance.timeOrigin) || 0;
 export const now = ORIGIN ? () => ORIGIN + performance.now() : () => Date.now();
@@ -287,8 +316,8 @@ export class Bus {
         if (Atomics.compareExchange(i32, H.LOCK, v, v | LOCK_CONTENDED) !== v) continue;
         v |= LOCK_CONTENDED;
       }
-      const r = Atomics.waitAsync(i32, H.LOCK, v);
-      if (r.async) await r.value;
+      // bounded: re-check now and then whether the owner died holding the lock
+      await waitAsyncAlive(i32, H.LOCK, v, LOCK_RECHECK_MS);
     }
   }
 
@@ -305,8 +334,7 @@ export class Bus {
       const v = Atomics.load(this.i32, H.LOCK);
       const left = deadline - now();
       if ((v & LOCK_OWNER_MASK) !== pid || left <= 0) return;
-      const r = Atomics.waitAsync(this.i32, H.LOCK, v, left);
-      if (r.async) await r.value;
+      await waitAsyncAlive(this.i32, H.LOCK, v, left);
     }
   }
 

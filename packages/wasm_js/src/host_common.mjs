@@ -11,6 +11,7 @@
 
 import { BusClient } from './bus_client.mjs';
 import { FromHost } from './protocol.mjs';
+import { StdinPipe } from './stdin_pipe.mjs';
 
 /**
  * The platform half of a host.
@@ -38,16 +39,65 @@ export function withNamespaceFromEnvironment(args, env) {
 }
 
 /**
- * Standard input from a text: Emscripten calls the reader once per byte and
- * stops at null (end of file). No text: end of file at once (a worker has no
- * terminal to read from).
- * @param {string|null|undefined} text
- * @returns {function(): (number|null)}
+ * Standard input without a pipe: end of file at once (a worker has no
+ * terminal to read from). Emscripten calls the reader once per byte.
+ * @returns {null}
  */
-export function stdinReader(text) {
-  const bytes = new TextEncoder().encode(text || '');
-  let next = 0;
-  return () => (next < bytes.length ? bytes[next++] : null);
+function noStdin() {
+  return null;
+}
+
+/**
+ * Read from the process' stdin pipe, blocking while it is empty, like a
+ * terminal. The wait sleeps on the process' doorbell, which the Runtime rings
+ * after writing, and which a pthread rings when it proxies a call to this
+ * thread (its printf): those calls run while we wait, so a node that reads
+ * its standard input on the main thread keeps logging from its executor
+ * threads.
+ * @param {StdinPipe} pipe
+ * @param {BusClient} client
+ * @returns {function(object, Uint8Array, number, number): number} an Emscripten device read
+ */
+function blockingStdinRead(pipe, client) {
+  const service = () => {
+    const bus = globalThis.WasmBus;
+    if (bus && bus.client && typeof bus.client.service === 'function') bus.client.service();
+  };
+  return (stream, buffer, offset, length) => {
+    for (;;) {
+      let n = pipe.take(buffer, offset, length);
+      if (n >= 0) return n;
+      client.register();
+      try {
+        const bell = client.bell();
+        service();
+        n = pipe.take(buffer, offset, length);
+        if (n >= 0) return n;
+        client.sleep(bell, Infinity);
+      } finally {
+        client.unregister();
+      }
+    }
+  };
+}
+
+/**
+ * Make /dev/stdin read from the pipe (before main() runs).
+ * @param {StdinPipe} pipe
+ * @param {BusClient} client
+ * @param {string} url the executable, for messages
+ */
+function connectStdin(pipe, client, url) {
+  const FS = globalThis.FS;
+  if (!FS || typeof FS.init !== 'function' || typeof FS.getDevice !== 'function') {
+    throw new Error(`${url} was linked without a file system (-sFILESYSTEM=0): it cannot read standard input`);
+  }
+  // Emscripten's own init (the same call) then sees it done; with Module.stdin
+  // set it makes /dev/stdin a device, whose read we replace: the stock one
+  // calls Module.stdin per byte and cannot block until a line arrives.
+  if (!FS.init.initialized) FS.init();
+  const device = FS.getDevice(FS.lookupPath('/dev/stdin').node.rdev);
+  device.stream_ops.read = blockingStdinRead(pipe, client);
 }
 
 /**
@@ -101,10 +151,11 @@ export async function startProcess(msg, platform) {
           (err) => exit(1, true, `cannot instantiate ${msg.wasmUrl}: ${err && err.message}`));
         return {};
       },
-      stdin: stdinReader(msg.stdin),
+      stdin: noStdin,
       preRun: [() => {
         // Executables that do not link wasm_cpp get their environment here.
         if (typeof globalThis.ENV === 'object' && globalThis.ENV) Object.assign(globalThis.ENV, env);
+        if (msg.stdin) connectStdin(new StdinPipe(msg.stdin), client, msg.url);
         writeFiles(msg.files, msg.url);
       }],
       onExit: (code) => {

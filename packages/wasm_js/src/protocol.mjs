@@ -11,7 +11,7 @@
 export const ToHost = Object.freeze({
   /** {type, hostModuleUrl}: import the host module now (a warm, idle host); answered by READY */
   PRELOAD: 'preload',
-  /** {type, bus, pid, url, wasmUrl, glueFile, args, env, name, wasmModule, stdin, files, busModuleUrl, hostModuleUrl} */
+  /** {type, bus, pid, url, wasmUrl, glueFile, args, env, name, wasmModule, stdin (SharedArrayBuffer of a StdinPipe, or null), files, busModuleUrl, hostModuleUrl} */
   START: 'start',
 });
 

@@ -9,10 +9,11 @@
  * @module runtime
  */
 
-import { Bus, BusError, Code } from './bus.mjs';
+import { Bus, BusError, Code, waitAsyncAlive } from './bus.mjs';
 import { H, P, PROC_KIND_NODE, PROC_KIND_RUNTIME, PROC_KIND_TOOLS } from './layout.mjs';
 import { HostWorker, compileWasm, isNode, resolveUrl, siblingUrl } from './platform.mjs';
 import { FromHost, ToHost } from './protocol.mjs';
+import { DEFAULT_STDIN_CAPACITY, StdinPipe } from './stdin_pipe.mjs';
 import { Tools } from './tools.mjs';
 
 /** Thrown by Runtime.create() when shared memory is unavailable (page not cross-origin isolated). */
@@ -82,6 +83,22 @@ function gidHex(words) {
 }
 
 /**
+ * The stdin pipe a spawn() asks for: none, an open one (`true`), or one
+ * holding a whole text (or bytes) and closed.
+ * @param {string|Uint8Array|boolean|null|undefined} stdin
+ * @returns {StdinPipe|null}
+ */
+function makeStdinPipe(stdin) {
+  if (stdin === undefined || stdin === null || stdin === false) return null;
+  if (stdin === true) return StdinPipe.create();
+  const bytes = stdin instanceof Uint8Array ? stdin : new TextEncoder().encode(String(stdin));
+  const pipe = StdinPipe.create(Math.max(DEFAULT_STDIN_CAPACITY, bytes.length));
+  pipe.write(bytes);
+  pipe.close();
+  return pipe;
+}
+
+/**
  * One running executable (a bus process).
  */
 export class NodeProcess {
@@ -98,6 +115,8 @@ export class NodeProcess {
     this._worker = worker;
     this._options = options;
     this._done = false;
+    this._stdin = options.stdinPipe || null;
+    this._stdinWrites = Promise.resolve();
     /** Resolves with {code, crashed, reason} when the process has ended and left the graph. */
     this.exited = new Promise((resolve) => { this._resolve = resolve; });
   }
@@ -143,6 +162,66 @@ export class NodeProcess {
       }
     }
     this._resolve(result);
+  }
+
+  /**
+   * Write to the process' standard input (spawned with `stdin: true`), as a
+   * user types into a terminal. Writes keep their order; a write larger than
+   * the pipe waits until the process has read enough of it.
+   * @param {string|Uint8Array} data text (UTF-8) or bytes
+   * @returns {Promise<void>} resolves once every byte is in the pipe
+   * @throws {BusError} when the process has no open standard input
+   */
+  writeStdin(data) {
+    const bytes = typeof data === 'string' ? new TextEncoder().encode(data) : data;
+    if (!(bytes instanceof Uint8Array)) {
+      return Promise.reject(new BusError(Code.INVALID_ARGUMENT,
+        `writeStdin '${this.name}': give a string or a Uint8Array, not ${typeof data}`));
+    }
+    const write = this._stdinWrites.then(() => this._writeAll(bytes));
+    this._stdinWrites = write.catch(() => {});
+    return write;
+  }
+
+  async _writeAll(bytes) {
+    const pipe = this._checkStdin('writeStdin');
+    let rest = bytes;
+    for (;;) {
+      if (this._done) {
+        throw new BusError(Code.ERROR, `writeStdin '${this.name}': the process has ended`);
+      }
+      rest = rest.subarray(pipe.write(rest));
+      this._runtime.bus.ring(this.id);
+      if (rest.length === 0) return;
+      // full: wait for the process to read (bounded, to notice its end)
+      await waitAsyncAlive(pipe.i32, StdinPipe.READ_INDEX, pipe.readCount(), 50);
+    }
+  }
+
+  /**
+   * Close the process' standard input: it reads end of file once it has read
+   * what was written before.
+   * @returns {Promise<void>} resolves after the pending writes
+   */
+  closeStdin() {
+    const close = this._stdinWrites.then(() => {
+      const pipe = this._checkStdin('closeStdin');
+      pipe.close();
+      if (!this._done) this._runtime.bus.ring(this.id);
+    });
+    this._stdinWrites = close.catch(() => {});
+    return close;
+  }
+
+  _checkStdin(what) {
+    if (!this._stdin) {
+      throw new BusError(Code.INVALID_ARGUMENT,
+        `${what} '${this.name}': its standard input is not open (spawn it with stdin: true)`);
+    }
+    if (this._stdin.closed()) {
+      throw new BusError(Code.INVALID_ARGUMENT, `${what} '${this.name}': its standard input is closed`);
+    }
+    return this._stdin;
   }
 
   /**
@@ -284,7 +363,9 @@ export class Runtime {
    * @param {function({code: number|null, crashed: boolean, reason: string}): void} [spec.onExit]
    * @param {WebAssembly.Module} [spec.wasmModule] an already compiled module
    * @param {boolean} [spec.shareModule=true] compile the .wasm once and share it between spawns
-   * @param {string} [spec.stdin] text the executable reads as its standard input (then end of file);
+   * @param {string|Uint8Array|boolean} [spec.stdin] standard input: a text (or bytes) the
+   *   executable reads, then end of file; `true` for an open pipe fed with
+   *   {@link NodeProcess#writeStdin} and ended with {@link NodeProcess#closeStdin};
    *   without it standard input is empty
    * @param {Object<string, string|Uint8Array>} [spec.files] files written into the executable's
    *   file system before main() runs (absolute path → content), e.g. a `--params-file`
@@ -305,7 +386,7 @@ export class Runtime {
     const args = (spec.args || []).map(String);
     const env = {};
     for (const [k, v] of Object.entries(spec.env || {})) env[k] = String(v);
-    const stdin = spec.stdin === undefined || spec.stdin === null ? null : String(spec.stdin);
+    const stdinPipe = makeStdinPipe(spec.stdin);
     const files = checkedFiles(spec.files, name);
     let wasmModule = spec.wasmModule || null;
     if (!wasmModule && spec.shareModule !== false) {
@@ -323,7 +404,7 @@ export class Runtime {
       await this._reap(pid, null);
       throw new BusError(Code.ERROR, `spawn '${name}': cannot start a worker: ${e.message}`);
     }
-    const proc = new NodeProcess(this, pid, name, worker, { ...spec, spawnedAt });
+    const proc = new NodeProcess(this, pid, name, worker, { ...spec, spawnedAt, stdinPipe });
     this.processes.set(pid, proc);
     worker.on('message', (m) => proc._onMessage(m));
     worker.on('error', (e) => {
@@ -334,7 +415,7 @@ export class Runtime {
       proc._finish({ code, crashed: code !== 0, reason: code !== 0 ? `worker exited with code ${code}` : '' });
     });
     worker.postMessage({
-      type: ToHost.START, bus: this.bus.sab, pid, url, wasmUrl, glueFile, args, env, name, wasmModule, stdin, files,
+      type: ToHost.START, bus: this.bus.sab, pid, url, wasmUrl, glueFile, args, env, name, wasmModule, stdin: stdinPipe && stdinPipe.sab, files,
       busModuleUrl: siblingUrl('bus_client.mjs'), hostModuleUrl: siblingUrl('host_common.mjs'),
     });
     return proc;

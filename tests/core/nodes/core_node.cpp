@@ -998,6 +998,43 @@ int role_io(int argc, char ** argv)
   return 0;
 }
 
+/**
+ * Role "lines": a terminal program. Prints "LINE n <text>" as soon as each
+ * line of standard input arrives, then "EOF n". With threads, a thread
+ * prints "THREAD" lines while the main thread sleeps in read(), which only
+ * works when the read runs what the thread proxies to it (its printf).
+ */
+int role_lines()
+{
+#ifdef __EMSCRIPTEN_PTHREADS__
+  std::printf("READY threads=1\n");
+#else
+  std::printf("READY threads=0\n");
+#endif
+  std::fflush(stdout);
+#ifdef __EMSCRIPTEN_PTHREADS__
+  std::thread talker([]() {
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+      for (int i = 0; i < 3; ++i) {
+        std::printf("THREAD %d\n", i);
+        std::fflush(stdout);
+      }
+    });
+#endif
+  char buf[4096];
+  int n = 0;
+  while (std::fgets(buf, sizeof(buf), stdin) != nullptr) {
+    buf[std::strcspn(buf, "\n")] = '\0';
+    std::printf("LINE %d %s\n", ++n, buf);
+    std::fflush(stdout);
+  }
+  std::printf("EOF %d\n", n);
+#ifdef __EMSCRIPTEN_PTHREADS__
+  talker.join();
+#endif
+  return 0;
+}
+
 int main(int argc, char ** argv)
 {
   if (argc < 2) {
@@ -1006,6 +1043,7 @@ int main(int argc, char ** argv)
   }
   const std::string role = argv[1];
   if (role == "io") {return role_io(argc, argv);}
+  if (role == "lines") {return role_lines();}
   for (int i = 2; i + 1 < argc; i += 2) {
     std::string k = argv[i];
     if (k.rfind("--", 0) != 0) {

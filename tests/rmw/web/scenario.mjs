@@ -10,8 +10,11 @@
  *     "runtime": {"maxMessageBytes": 1048576},   // Runtime.create() options
  *     "steps": [
  *       {"spawn": "talker", "exe": "<url or path of the .js>", "args": [], "env": {},
- *        "stdin": "text the executable reads as its standard input",
+ *        "stdin": "text the executable reads as its standard input (then end of file)",
  *        "files": {"/params.yaml": "file content"}},
+ *       {"spawn": "client", "exe": "...", "stdin": true},  // an open pipe, fed by stdin steps
+ *       {"stdin": "client", "text": "2\n3\n"},          // type into it
+ *       {"stdin": "client", "close": true},             // end of file
  *       {"wait": "listener", "text": "I heard", "count": 3, "timeout": 20},
  *       {"wait": "listener", "regex": "^\\[WARN\\]", "timeout": 5},
  *       {"stop": "talker"},
@@ -129,6 +132,11 @@ export async function runScenario(Runtime, scenario) {
           const process = processes.get(step.stop);
           if (!process) throw new Error(`no process named '${step.stop}'`);
           await process.stop();
+        } else if (step.stdin) {
+          const process = processes.get(step.stdin);
+          if (!process) throw new Error(`no process named '${step.stdin}'`);
+          if (step.text !== undefined) await process.writeStdin(step.text);
+          if (step.close) await process.closeStdin();
         } else if (step.graph) {
           report.graphs[step.graph] = runtime.graph();
         } else if (step.graphWait) {

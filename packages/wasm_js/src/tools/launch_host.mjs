@@ -115,8 +115,10 @@ async function main() {
           for (const line of String(text).split('\n')) if (line !== '') write(`[${proc.label}] ${line}`);
         },
         onExit,
+        stdin: plan.stdin ? true : undefined,
       });
       handles.set(proc.label, handle);
+      if (plan.stdin) forwardStdin(handle);
       out(`[INFO] [${proc.label}]: process started`);
     } catch (e) {
       onExit({ code: null, crashed: true, reason: e.message });
@@ -151,6 +153,21 @@ async function main() {
   await done;
   if (runtime.close) await runtime.close();
   return failed ? 1 : 0;
+}
+
+/**
+ * Give this process' standard input (a terminal, a pipe or a file) to the
+ * node, as `ros2 run` does; its end becomes the node's end of file.
+ * @param {NodeProcess} handle
+ */
+function forwardStdin(handle) {
+  const ignoreEnded = () => {}; // the node may end first: the rest is not read
+  process.stdin.on('data', (chunk) => {
+    handle.writeStdin(Uint8Array.from(chunk)).catch(ignoreEnded);
+  });
+  process.stdin.on('end', () => handle.closeStdin().catch(ignoreEnded));
+  process.stdin.on('error', () => handle.closeStdin().catch(ignoreEnded));
+  handle.exited.then(() => process.stdin.pause());
 }
 
 main().then((code) => process.exit(code), (e) => {
