@@ -12,6 +12,22 @@ else()
   set(CMAKE_BUILD_TYPE Release CACHE STRING "colcon-wasm: default build type")
 endif()
 
+# The optimization flags. Set here because CMake appends "-O3 -DNDEBUG" to
+# the toolchain's Release defaults, which would override --wasm-opt-level.
+if(NOT COLCON_WASM_OPT_LEVEL)
+  set(COLCON_WASM_OPT_LEVEL 2)
+endif()
+if("${COLCON_WASM_LINK_OPT_LEVEL}" STREQUAL "")
+  set(COLCON_WASM_LINK_OPT_LEVEL "${COLCON_WASM_OPT_LEVEL}")
+endif()
+foreach(_lang C CXX)
+  set(CMAKE_${_lang}_FLAGS_RELEASE "-O${COLCON_WASM_OPT_LEVEL} -DNDEBUG" CACHE STRING
+    "colcon-wasm: --wasm-opt-level")
+  set(CMAKE_${_lang}_FLAGS_DEBUG "-g -O0" CACHE STRING "colcon-wasm: --wasm-debug")
+endforeach()
+set(CMAKE_EXE_LINKER_FLAGS_RELEASE "-O${COLCON_WASM_LINK_OPT_LEVEL}" CACHE STRING
+  "colcon-wasm: --wasm-link-opt-level")
+
 # one middleware, linked statically, no runtime selection (no dlopen)
 set(RMW_IMPLEMENTATION rmw_wasm_cpp CACHE STRING "colcon-wasm: the one RMW")
 set(RMW_IMPLEMENTATION_DISABLE_RUNTIME_SELECTION ON CACHE BOOL
