@@ -18,9 +18,9 @@ from colcon_helpers import copy_fixture
 from colcon_helpers import node
 import pytest
 
-HOST_TOOL_SETUP = '''from setuptools import setup
-setup(name='calc_tool', version='0.1.0', py_modules=['calc_tool'])
-'''
+HOST_TOOL_SETUP = (
+    'from setuptools import setup\n'
+    "setup(name='calc_tool', version='0.1.0', py_modules=['calc_tool'])\n")
 
 
 @pytest.fixture(scope='module')

@@ -31,7 +31,7 @@ LAUNCHER = Path(compile_launcher.__file__).resolve()
 
 @pytest.fixture(scope='module')
 def emscripten():
-    """The Emscripten the build uses, with its environment."""
+    """Find the Emscripten the build uses, with its environment."""
     found = find_emscripten()
     env = dict(os.environ)
     env.update(found.environment())
