@@ -5,12 +5,16 @@
 
 import argparse
 import os
+from pathlib import Path
 import sys
 
 from colcon_core.environment_variable import EnvironmentVariable
 from colcon_wasm import resources
 
 OPT_LEVELS = ('1', '2', '3', 's', 'z')
+
+"""Folder (inside the build base) of the compile launcher's cache."""
+LAUNCHER_CACHE = Path('.colcon_wasm') / 'compile_launcher'
 
 """Environment variable: default size of the pthread pool."""
 PTHREAD_POOL_SIZE_ENVIRONMENT_VARIABLE = EnvironmentVariable(
@@ -83,6 +87,8 @@ class WasmSettings:
         self.pthread = not getattr(args, 'wasm_no_pthread', False)
         self.debug = bool(getattr(args, 'wasm_debug', False))
         self.opt_level = str(getattr(args, 'wasm_opt_level', '2') or '2')
+        link = getattr(args, 'wasm_link_opt_level', None)
+        self.link_opt_level = self.opt_level if link is None else str(link)
         pool = getattr(args, 'wasm_pthread_pool_size', None)
         self.pthread_pool_size = _default_pool_size() if pool is None \
             else int(pool)
@@ -91,13 +97,19 @@ class WasmSettings:
         """Get the flags entry of the manifest."""
         return {
             'pthread': self.pthread, 'debug': self.debug,
-            'opt': self.opt_level,
+            'opt': self.opt_level, 'link_opt': self.link_opt_level,
             'pthread_pool_size': self.pthread_pool_size if self.pthread else 0,
             'cmake_args': list(cmake_args)}
 
 
+def compile_launcher_script():
+    """Get the compile launcher script (run by CMake, see the toolchain)."""
+    from colcon_wasm import compile_launcher
+    return Path(compile_launcher.__file__).resolve()
+
+
 def cmake_arguments(*, emscripten, settings, install_base, rule,
-                    project_name):
+                    project_name, build_base=None):
     """
     Get the CMake arguments colcon-wasm passes (before the user's).
 
@@ -108,6 +120,8 @@ def cmake_arguments(*, emscripten, settings, install_base, rule,
     :param emscripten: the :class:`colcon_wasm.toolchain.Emscripten`
     :param settings: the :class:`WasmSettings`
     :param str install_base: the wasm install base (absolute)
+    :param str build_base: the wasm build base shared by all packages
+      (holds the compile launcher's cache); None: per package
     :param rule: the recipe's :class:`PackageRule` for the package
     :param str project_name: the package name (for the project include)
     :rtype: list
@@ -123,13 +137,19 @@ def cmake_arguments(*, emscripten, settings, install_base, rule,
         f'-DCOLCON_WASM_PTHREAD_POOL_SIZE={settings.pthread_pool_size}',
         f'-DCOLCON_WASM_DEBUG={on_off[settings.debug]}',
         f'-DCOLCON_WASM_OPT_LEVEL={settings.opt_level}',
+        f'-DCOLCON_WASM_LINK_OPT_LEVEL={settings.link_opt_level}',
         '-C', str(resources.file('toolchains', 'wasm-ros-cache.cmake')),
         '-DCMAKE_TOOLCHAIN_FILE=' + str(
             resources.file('toolchains', 'wasm-ros.cmake')),
         # the interpreter running colcon has the code generators' modules
         f'-DPYTHON_EXECUTABLE={sys.executable}',
         f'-DPython3_EXECUTABLE={sys.executable}',
+        f'-DCOLCON_WASM_PYTHON={sys.executable}',
+        f'-DCOLCON_WASM_LAUNCHER_SCRIPT={compile_launcher_script()}',
     ]
+    if build_base is not None:
+        args.append('-DCOLCON_WASM_LAUNCHER_CACHE='
+                    + str(Path(build_base) / LAUNCHER_CACHE))
     if rule.env:
         # set while CMake configures the package (see toolchains/wasm-ros.cmake)
         args.append('-DCOLCON_WASM_ENV=' + ';'.join(

@@ -10,7 +10,8 @@ PLAN_KEY = 'colcon_wasm'
 class BuildPlan:
     """How one package is built with `--wasm`."""
 
-    def __init__(self, *, original_type, recipe, rule, emscripten, settings):
+    def __init__(self, *, original_type, recipe, rule, emscripten, settings,
+                 host_tool=False):
         """
         Describe the wasm build of a package.
 
@@ -21,9 +22,12 @@ class BuildPlan:
         :param emscripten: the :class:`colcon_wasm.toolchain.Emscripten`
           (None for verbs that do not build, e.g. `colcon list`)
         :param settings: the :class:`colcon_wasm.options.WasmSettings`
+        :param bool host_tool: a recipe host tool (pure Python, built by its
+          stock task for the host; no CMake arguments, no post-processing)
         """
         self.original_type = original_type
         self.recipe = recipe
         self.rule = rule
         self.emscripten = emscripten
         self.settings = settings
+        self.host_tool = host_tool

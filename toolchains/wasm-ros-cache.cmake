@@ -12,6 +12,22 @@ else()
   set(CMAKE_BUILD_TYPE Release CACHE STRING "colcon-wasm: default build type")
 endif()
 
+# The optimization flags. Set here because CMake appends "-O3 -DNDEBUG" to
+# the toolchain's Release defaults, which would override --wasm-opt-level.
+if(NOT COLCON_WASM_OPT_LEVEL)
+  set(COLCON_WASM_OPT_LEVEL 2)
+endif()
+if("${COLCON_WASM_LINK_OPT_LEVEL}" STREQUAL "")
+  set(COLCON_WASM_LINK_OPT_LEVEL "${COLCON_WASM_OPT_LEVEL}")
+endif()
+foreach(_lang C CXX)
+  set(CMAKE_${_lang}_FLAGS_RELEASE "-O${COLCON_WASM_OPT_LEVEL} -DNDEBUG" CACHE STRING
+    "colcon-wasm: --wasm-opt-level")
+  set(CMAKE_${_lang}_FLAGS_DEBUG "-g -O0" CACHE STRING "colcon-wasm: --wasm-debug")
+endforeach()
+set(CMAKE_EXE_LINKER_FLAGS_RELEASE "-O${COLCON_WASM_LINK_OPT_LEVEL}" CACHE STRING
+  "colcon-wasm: --wasm-link-opt-level")
+
 # one middleware, linked statically, no runtime selection (no dlopen)
 set(RMW_IMPLEMENTATION rmw_wasm_cpp CACHE STRING "colcon-wasm: the one RMW")
 set(RMW_IMPLEMENTATION_DISABLE_RUNTIME_SELECTION ON CACHE BOOL
@@ -28,16 +44,3 @@ set(PKG_CONFIG_EXECUTABLE "PKG_CONFIG_EXECUTABLE-NOTFOUND" CACHE FILEPATH
 
 # vendor packages: never download or build a bundled copy when one is installed
 set(FORCE_BUILD_VENDOR_PKG OFF CACHE BOOL "colcon-wasm: use installed packages")
-
-# Release optimisation level (--wasm-opt-level). Set as cache values: CMake's
-# Clang module appends its own " -O3 -DNDEBUG" to a toolchain file's
-# CMAKE_<LANG>_FLAGS_RELEASE_INIT, and the last -O wins.
-if(NOT COLCON_WASM_OPT_LEVEL)
-  set(COLCON_WASM_OPT_LEVEL 2)
-endif()
-set(CMAKE_C_FLAGS_RELEASE "-O${COLCON_WASM_OPT_LEVEL} -DNDEBUG" CACHE STRING
-  "colcon-wasm: --wasm-opt-level")
-set(CMAKE_CXX_FLAGS_RELEASE "-O${COLCON_WASM_OPT_LEVEL} -DNDEBUG" CACHE STRING
-  "colcon-wasm: --wasm-opt-level")
-set(CMAKE_EXE_LINKER_FLAGS_RELEASE "-O${COLCON_WASM_OPT_LEVEL}" CACHE STRING
-  "colcon-wasm: --wasm-opt-level")

@@ -44,6 +44,13 @@ WASM_TYPES = {
     'ros.ament_cmake': 'wasm.ros.ament_cmake',
 }
 
+"""
+Package types of host tools wrapped by the wasm task (it skips them when up
+to date; the stock Python task does the build).
+"""
+HOST_TOOL_TYPE_PREFIX = 'wasm.host.'
+HOST_TOOL_TYPES = ('wasm.host.python', 'wasm.host.ros.ament_python')
+
 """Dependency categories that must be buildable (tests are off)."""
 NEEDED_CATEGORIES = ('build', 'run')
 
@@ -247,12 +254,20 @@ class WasmPackageSelection(PackageSelectionExtensionPoint):
         settings = WasmSettings(args)
         for decorator in decorators:
             pkg = decorator.descriptor
-            if decorator.selected and pkg.type in WASM_TYPES:
-                pkg.metadata[PLAN_KEY] = BuildPlan(
-                    original_type=pkg.type, recipe=recipe,
-                    rule=recipe.rule(pkg.name), emscripten=emscripten,
-                    settings=settings)
-                pkg.type = WASM_TYPES[pkg.type]
+            if not decorator.selected:
+                continue
+            if pkg.type in WASM_TYPES:
+                wasm_type = WASM_TYPES[pkg.type]
+            elif pkg.name in recipe.host_tools and \
+                    HOST_TOOL_TYPE_PREFIX + pkg.type in HOST_TOOL_TYPES:
+                wasm_type = HOST_TOOL_TYPE_PREFIX + pkg.type
+            else:
+                continue
+            pkg.metadata[PLAN_KEY] = BuildPlan(
+                original_type=pkg.type, recipe=recipe,
+                rule=recipe.rule(pkg.name), emscripten=emscripten,
+                settings=settings, host_tool=pkg.type not in WASM_TYPES)
+            pkg.type = wasm_type
 
 
 def _check_workspace_not_empty(args, decorators):

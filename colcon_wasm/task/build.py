@@ -17,6 +17,10 @@ from colcon_wasm.options import cmake_arguments
 from colcon_wasm.patch import prepare_patched_source
 from colcon_wasm.plan import PLAN_KEY
 from colcon_wasm.postprocess import postprocess_package
+from colcon_wasm.task.stamp import build_inputs
+from colcon_wasm.task.stamp import is_up_to_date
+from colcon_wasm.task.stamp import remove_stamp
+from colcon_wasm.task.stamp import write_stamp
 
 logger = colcon_logger.getChild(__name__)
 
@@ -44,7 +48,15 @@ def patched_source_folder(build_base, pkg_name):
 
 
 class WasmBuildTask(TaskExtensionPoint):
-    """Build CMake, ros.cmake and ament_cmake packages to WebAssembly."""
+    """
+    Build CMake, ros.cmake and ament_cmake packages to WebAssembly.
+
+    The stock colcon task of the package's original type does the work; this
+    task adds the toolchain, patches and post-processing around it, and
+    skips a package whose last build is up to date
+    (:mod:`colcon_wasm.task.stamp`). Recipe host tools (pure Python) get the
+    up-to-date check only.
+    """
 
     def __init__(self):  # noqa: D107
         super().__init__()
@@ -68,16 +80,30 @@ class WasmBuildTask(TaskExtensionPoint):
                 'installed?')
             return 1
 
+        if plan.host_tool:
+            return await self._build_host_tool(stock, plan)
+
+        args.cmake_args = cmake_arguments(
+            emscripten=plan.emscripten, settings=plan.settings,
+            install_base=self._install_base(args), rule=plan.rule,
+            project_name=pkg.name,
+            build_base=Path(args.build_base).parent) + \
+            list(args.cmake_args or [])
+        patches = self._patches(pkg, plan)
+        inputs = build_inputs(
+            args=args, source=Path(args.path), patches=patches,
+            settings={'wasm': plan.settings.describe([]),
+                      'emscripten': plan.emscripten.describe()},
+            dependencies=self.context.dependencies)
+        if self._up_to_date(inputs):
+            return 0
+
         try:
-            self._prepare_source(pkg, args, plan)
+            self._prepare_source(pkg, args, patches)
         except ColconWasmError as e:
             logger.error(exit_message(e))
             return 1
         self._clean_cache_on_new_settings(args, plan)
-        args.cmake_args = cmake_arguments(
-            emscripten=plan.emscripten, settings=plan.settings,
-            install_base=self._install_base(args), rule=plan.rule,
-            project_name=pkg.name) + list(args.cmake_args or [])
 
         stock.set_context(context=self.context)
         rc = await stock.build()
@@ -97,13 +123,47 @@ class WasmBuildTask(TaskExtensionPoint):
         except ColconWasmError as e:
             logger.error(exit_message(e))
             return 1
+        write_stamp(args.build_base, inputs)
         return 0
 
-    def _prepare_source(self, pkg, args, plan):
-        """Point the build at a patched copy when the recipe has patches."""
+    async def _build_host_tool(self, stock, plan):
+        """Build a recipe host tool with its stock task, unless up to date."""
+        args = self.context.args
+        inputs = build_inputs(
+            args=args, source=Path(args.path), patches=[],
+            settings={'host_tool': plan.original_type},
+            dependencies=self.context.dependencies)
+        if self._up_to_date(inputs):
+            return 0
+        stock.set_context(context=self.context)
+        rc = await stock.build()
+        if rc:
+            return rc
+        write_stamp(args.build_base, inputs)
+        return 0
+
+    def _up_to_date(self, inputs):
+        """Check the stamp of the last build; forget it when outdated."""
+        pkg = self.context.pkg
+        args = self.context.args
+        up_to_date, reason = is_up_to_date(args, pkg.name, inputs)
+        if up_to_date:
+            logger.info(
+                f"'{pkg.name}' is up to date (nothing changed since its last "
+                '--wasm build): skipping it')
+            self.progress('up to date')
+            return True
+        logger.debug(f"Building '{pkg.name}': {reason}")
+        remove_stamp(args.build_base)
+        return False
+
+    def _patches(self, pkg, plan):
+        """Get the recipe's patch files for this package version."""
         version = pkg.metadata.get('version')
-        patches = [p.file for p in plan.rule.patches
-                   if p.applies_to(version)]
+        return [p.file for p in plan.rule.patches if p.applies_to(version)]
+
+    def _prepare_source(self, pkg, args, patches):
+        """Point the build at a patched copy when the recipe has patches."""
         if not patches:
             return
         self.progress('patch')
