@@ -108,6 +108,7 @@ export class Session {
       name: proc.label,
       onLog: ({ stream, text }) => this.addLog(proc, { stream, severity: severityOf(stream, text), text }),
       onExit: (exit) => this.exited(proc, exit),
+      stdin: true, // an open standard input, typed into from the log dock
     }).then((handle) => {
       proc.handle = handle;
       if (proc.state === 'starting') proc.state = 'running';
@@ -148,6 +149,32 @@ export class Session {
       if (proc.log.length > MAX_LOG) proc.log.splice(0, proc.log.length - MAX_LOG);
       this.emit('log', proc, e);
     }
+  }
+
+  /**
+   * Type a line into a running process' standard input, as into its
+   * terminal; the line is echoed in its log.
+   * @returns {Promise<void>}
+   */
+  sendStdin(id, line) {
+    const proc = this.processes.get(id);
+    if (!proc || !proc.handle || proc.state !== 'running') {
+      return Promise.reject(new Error('the process is not running'));
+    }
+    this.addLog(proc, { severity: 'SYSTEM', text: `stdin › ${line}` });
+    return proc.handle.writeStdin(`${line}\n`).catch((e) => {
+      this.addLog(proc, { severity: 'ERROR', text: `standard input: ${e.message}` });
+    });
+  }
+
+  /** End a running process' standard input (end of file, like Ctrl-D). */
+  closeStdin(id) {
+    const proc = this.processes.get(id);
+    if (!proc || !proc.handle || proc.state !== 'running') return Promise.resolve();
+    this.addLog(proc, { severity: 'SYSTEM', text: 'stdin closed (end of file)' });
+    return proc.handle.closeStdin().catch((e) => {
+      this.addLog(proc, { severity: 'ERROR', text: `standard input: ${e.message}` });
+    });
   }
 
   stopProcess(id) {

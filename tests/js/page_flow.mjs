@@ -324,6 +324,23 @@ async function humbleFlow() {
       null, { timeout: STEP_TIMEOUT });
   });
 
+  await step(page, 'humble-stdin-typed-into-the-async-client', async () => {
+    // the service of the previous step answers; the client reads its numbers from stdin
+    await startFromSidebar(page, 'examples_rclcpp_async_client/client_main');
+    await waitForLog(page, 'client_main', /insert the first one/);
+    await page.locator('.logtabs button[data-log^="client_main"]').click();
+    const input = page.locator('.logs form.stdin input');
+    await input.waitFor({ timeout: STEP_TIMEOUT });
+    for (const line of ['2', '3']) {
+      await input.fill(line);
+      await input.press('Enter');
+    }
+    await waitForLog(page, 'client_main', /Result of 2 \+ 3 is: 5/);
+    await input.fill('q');
+    await input.press('Enter');
+    await page.locator('.logpane .logline', { hasText: 'finished (exit code 0)' }).waitFor({ timeout: STEP_TIMEOUT });
+  });
+
   await step(page, 'humble-action-goal-with-feedback', async () => {
     await startFromSidebar(page, 'examples_rclcpp_minimal_action_server/action_server_member_functions');
     await tab(page, 'actions');

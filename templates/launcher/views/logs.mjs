@@ -17,8 +17,25 @@ export class LogsDock {
     this.follow = h('input', { type: 'checkbox', checked: true });
     this.tabs = h('div.logtabs');
     this.pane = h('div.logpane', { role: 'log', 'aria-live': 'off' });
-    this.element = h('section.logs', {}, this.tabs, this.pane);
-    session.on('processes', () => this.renderTabs());
+    // the selected process' standard input, like its terminal
+    this.stdinInput = h('input', {
+      type: 'text', autocomplete: 'off', spellcheck: false, 'aria-label': 'standard input',
+    });
+    this.stdinRow = h('form.stdin', { onsubmit: (e) => this.sendLine(e) },
+      h('span.prompt', {}, 'stdin ›'), this.stdinInput,
+      h('button', { type: 'submit', title: 'Send the line (Enter)' }, 'Send'),
+      h('button', { type: 'button', title: 'End of file (Ctrl-D)', onclick: () => this.endOfFile() }, 'EOF'));
+    this.stdinInput.addEventListener('keydown', (e) => {
+      if (e.key === 'd' && e.ctrlKey) {
+        e.preventDefault();
+        this.endOfFile();
+      }
+    });
+    this.element = h('section.logs', {}, this.tabs, this.pane, this.stdinRow);
+    session.on('processes', () => {
+      this.renderTabs();
+      this.renderStdin();
+    });
     session.on('log', (proc, entry) => {
       if (this.current === 'all' || this.current === proc.id) {
         this.pending.push([proc, entry]);
@@ -27,12 +44,34 @@ export class LogsDock {
     });
     this.renderTabs();
     this.renderPane();
+    this.renderStdin();
   }
 
   select(id) {
     this.current = id;
     this.renderTabs();
     this.renderPane();
+    this.renderStdin();
+  }
+
+  /** Show the stdin line for a running process' tab only. */
+  renderStdin() {
+    const p = this.current === 'all' ? null : this.session.processes.get(this.current);
+    const running = !!p && p.state === 'running';
+    this.stdinRow.hidden = !running;
+    if (running) this.stdinInput.placeholder = `type a line for ${p.label}, Enter to send`;
+  }
+
+  sendLine(event) {
+    event.preventDefault();
+    if (this.current === 'all') return;
+    const line = this.stdinInput.value;
+    this.stdinInput.value = '';
+    this.session.sendStdin(this.current, line).catch(() => this.renderStdin());
+  }
+
+  endOfFile() {
+    if (this.current !== 'all') this.session.closeStdin(this.current);
   }
 
   renderTabs() {
