@@ -67,13 +67,17 @@ STATUS = {
         'available" in a loop, as it does natively'),
     'service_main': (f'{E}::test_service_and_client', ''),
     'client_main': (f'{E}::test_service_and_client, test_async_client',
-                    'examples_rclcpp_async_client reads its numbers from standard input '
-                    '(the scenario feeds it)'),
+                    'examples_rclcpp_async_client reads its numbers from standard input, '
+                    'typed line by line (`colcon-wasm run` forwards the terminal; the page '
+                    'has a stdin line)'),
     'action_server_member_functions': (f'{E}::test_action_goal_and_result', ''),
     'action_server_not_composable': (f'{E}::test_action_goal_and_result', ''),
     'action_client_member_functions': (f'{E}::test_action_goal_and_result', ''),
     'action_client_not_composable': (f'{E}::test_action_goal_and_result', ''),
-    'action_client_not_composable_with_feedback': (f'{E}::test_action_feedback', ''),
+    'action_client_not_composable_with_feedback': (
+        f'{E}::test_action_feedback',
+        'the first feedback may be dropped: rclcpp_action takes it before the goal response '
+        'when both are ready, as it does natively'),
     'action_client_not_composable_with_cancel': (
         f'{E}::test_action_cancel', 'exits with 1 after the canceled goal, by design'),
     'timer_lambda': (f'{E}::test_timers', ''),
@@ -84,9 +88,10 @@ STATUS = {
                   'patched: Web Workers cannot be pinned to a CPU or given real-time '
                   'priorities (it warns "Failed to configure ... thread"), and thread CPU time '
                   'is measured with the monotonic clock (no per-thread CPU clock)'),
-    'ping': ('', 'builds; the two-process variant of ping_pong (same patch), not run by the '
-                 'tests'),
-    'pong': ('', 'builds; see ping'),
+    'ping': (f'{E}::test_callback_group_executor_ping_and_pong_in_two_processes',
+             'the two-process variant of ping_pong (same patch)'),
+    'pong': (f'{E}::test_callback_group_executor_ping_and_pong_in_two_processes',
+             'see ping'),
     'composition_composed': (f'{E}::test_composition_examples', ''),
     'composition_publisher': (f'{E}::test_composition_examples', ''),
     'composition_subscriber': (f'{E}::test_composition_examples', ''),

@@ -72,8 +72,7 @@ def classify(name, kind, recipe, results):
                 return 'built', 'host tool (Python, used by CMake)'
             return 'built', ''
         return 'failed', f'exit code {results[name]}'
-    return 'not in set', ('not part of this build (above '
-                          'rmw_implementation, or not needed by it)')
+    return 'not in set', 'not needed by the packages this build asked for'
 
 
 def render(workspace, packages, recipe, results, command, seconds):
@@ -105,8 +104,7 @@ def render(workspace, packages, recipe, results, command, seconds):
         'Results: **built** (installed into `install_wasm/`), **skipped** '
         '(the recipe or the package type leaves it out, with the reason), '
         '**failed**, or **not in set** (outside the `--packages-up-to` set '
-        'of this build: everything above `rmw_implementation` waits for '
-        '`rmw_wasm_cpp`).',
+        'of this build: not needed by what it asked for).',
         '',
         '| package | type | result | note |',
         '|---|---|---|---|',

@@ -244,6 +244,24 @@ def test_callback_group_executor(platform):
     assert any(re.search(r'sent \d+ ping', t, re.I) or 'ping' in t.lower() for t in texts)
 
 
+def test_callback_group_executor_ping_and_pong_in_two_processes(platform):
+    """ping and pong, each with a high and a low priority executor thread, in two workers."""
+    cbg = 'examples_rclcpp_cbg_executor'
+    report = run(platform, [
+        {'spawn': 'pong', 'exe': platform.exe(cbg, 'pong')},
+        {'wait': 'pong', 'text': 'Running experiment from now on', 'timeout': 30},
+        {'spawn': 'ping', 'exe': platform.exe(cbg, 'ping')},
+        {'wait': 'ping', 'text': 'Low prio path: Received', 'timeout': 60},
+        {'wait': 'pong', 'text': 'Low priority executor thread ran for', 'timeout': 60},
+    ])
+    ping = ' '.join(lines(report, 'ping'))
+    sent = re.search(r'Sent out (\d+) of configured (\d+) pings', ping)
+    assert sent and int(sent.group(1)) > 0, ping
+    # pong answered on the high priority path (both run the whole time)
+    high = re.search(r'High prio path: Received (\d+) pongs', ping)
+    assert high and int(high.group(1)) > 0, ping
+
+
 def test_composition_examples(platform):
     composition = 'examples_rclcpp_minimal_composition'
     report = run(platform, [
