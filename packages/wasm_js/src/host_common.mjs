@@ -85,13 +85,12 @@ function blockingStdinRead(pipe, client) {
  * Make /dev/stdin read from the pipe (before main() runs).
  * @param {StdinPipe} pipe
  * @param {BusClient} client
- * @param {string} url the executable, for messages
  */
-function connectStdin(pipe, client, url) {
+function connectStdin(pipe, client) {
   const FS = globalThis.FS;
-  if (!FS || typeof FS.init !== 'function' || typeof FS.getDevice !== 'function') {
-    throw new Error(`${url} was linked without a file system (-sFILESYSTEM=0): it cannot read standard input`);
-  }
+  // Linked without a file system (-sFILESYSTEM=0): the executable has no
+  // read() to call, so there is nothing to connect.
+  if (!FS || typeof FS.init !== 'function' || typeof FS.getDevice !== 'function') return;
   // Emscripten's own init (the same call) then sees it done; with Module.stdin
   // set it makes /dev/stdin a device, whose read we replace: the stock one
   // calls Module.stdin per byte and cannot block until a line arrives.
@@ -155,7 +154,7 @@ export async function startProcess(msg, platform) {
       preRun: [() => {
         // Executables that do not link wasm_cpp get their environment here.
         if (typeof globalThis.ENV === 'object' && globalThis.ENV) Object.assign(globalThis.ENV, env);
-        if (msg.stdin) connectStdin(new StdinPipe(msg.stdin), client, msg.url);
+        if (msg.stdin) connectStdin(new StdinPipe(msg.stdin), client);
         writeFiles(msg.files, msg.url);
       }],
       onExit: (code) => {
