@@ -52,6 +52,11 @@ def add_wasm_arguments(parser):
         '--wasm-opt-level', choices=OPT_LEVELS, default='2',
         help='Optimization level of Release builds (default: 2)')
     parser.add_argument(
+        '--wasm-link-opt-level', choices=('0',) + OPT_LEVELS, default=None,
+        help='Optimization level of Release links only (default: the '
+             '--wasm-opt-level); 1 links much faster, 2 and 3 make smaller '
+             'and faster .wasm files')
+    parser.add_argument(
         '--wasm-pthread-pool-size', type=_pool_size, metavar='N',
         default=_default_pool_size(),
         help='Workers started with each executable (default: '

@@ -57,8 +57,7 @@ Link the test workspace's executables at -O1: ~45 rclcpp executables link in
 a third of the time (CI budget), with the same behaviour; bench/rclcpp and
 docs report sizes of default (-O2) links separately.
 """
-RCLCPP_COLCON_ARGS = (
-    '--cmake-args', '-DCMAKE_EXE_LINKER_FLAGS_RELEASE=-O1')
+RCLCPP_COLCON_ARGS = ('--wasm-link-opt-level', '1')
 
 
 class ExistingBuild:

@@ -163,3 +163,20 @@ def test_opt_level_reaches_every_compile_and_link(tmp_path):
         assert opts and set(opts) == {f'-O{level}'}, opts
         opts = [w for w in link.read_text().split() if w.startswith('-O')]
         assert opts and set(opts) == {f'-O{level}'}, opts
+
+
+def test_link_opt_level_applies_to_links_only(tmp_path):
+    """--wasm-link-opt-level 1 links at -O1 and still compiles at -O2."""
+    ws = copy_fixture('ws_basic', tmp_path)
+    build = ws / 'build_wasm' / 'calc_app'
+    colcon(ws, 'build', '--wasm', '--packages-up-to', 'calc_app',
+           '--wasm-link-opt-level', '1')
+    flags = (build / 'CMakeFiles' / 'calc.dir' / 'flags.make').read_text()
+    link = (build / 'CMakeFiles' / 'calc.dir' / 'link.txt').read_text()
+    assert {w for w in flags.split() if w.startswith('-O')} == {'-O2'}
+    # CMake puts the compile flags on link lines too, the linker flags after
+    # them: emcc's last -O decides how the link optimizes
+    assert [w for w in link.split() if w.startswith('-O')][-1] == '-O1', link
+    bad = colcon(ws, 'build', '--wasm', '--wasm-link-opt-level', '9',
+                 check=False)
+    assert bad.returncode != 0 and "invalid choice: '9'" in bad.stdout
