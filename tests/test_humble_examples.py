@@ -245,7 +245,7 @@ def test_callback_group_executor(platform):
 
 
 def test_callback_group_executor_ping_and_pong_in_two_processes(platform):
-    """ping and pong, each with a high and a low priority executor thread, in two workers."""
+    """Run ping and pong, each with a high and a low priority executor thread, in two workers."""
     cbg = 'examples_rclcpp_cbg_executor'
     report = run(platform, [
         {'spawn': 'pong', 'exe': platform.exe(cbg, 'pong')},
