@@ -62,12 +62,13 @@ class Bench {
       },
     });
     const waitFor = (w) => new Promise((resolve, reject) => {
-      if (exited) {
+      const waiter = { ...w, resolve, reject };
+      waiters.push(waiter);
+      check(); // what it printed before it exited still counts
+      if (exited && waiters.includes(waiter)) {
+        waiters.splice(waiters.indexOf(waiter), 1);
         reject(new Error(`${name} exited (${exited.reason || exited.code}): ${lines.slice(-5).join(' | ')}`));
-        return;
       }
-      waiters.push({ ...w, resolve, reject });
-      check();
     });
     return {
       proc, results,
