@@ -382,17 +382,41 @@ SCENARIOS.stdin_pipe = async (ctx) => {
   // an open standard input: lines arrive while the program runs, a write
   // larger than the pipe waits for the reader, close gives end of file
   const texts = []; // every line (rec.lines is capped)
-  const proc = await start(ctx, 'lines', 'lines', {}, { stdin: true, onText: (t) => texts.push(t) });
+  const watchers = new Set(); // checks re-run on every line and at exit
+  const recheck = () => {
+    for (const watcher of [...watchers]) watcher();
+  };
+  const proc = await start(ctx, 'lines', 'lines', {}, {
+    stdin: true,
+    onText: (t) => {
+      texts.push(t);
+      recheck();
+    },
+  });
   const rec = ctx.procs.lines;
+  proc.exited.then(recheck);
+  // resolve with the first line starting with `text`, driven by log lines
   const seen = (text, timeoutMs = 20000) => new Promise((resolve, reject) => {
-    const t0 = performance.now();
-    const check = () => {
-      const line = rec.lines.find((l) => l.text.startsWith(text));
-      if (line) resolve(line.text);
-      else if (rec.exit) reject(new Error(`lines exited before printing '${text}': ${rec.lines.map((l) => l.text).join(' | ')}`));
-      else if (performance.now() - t0 > timeoutMs) reject(new Error(`no '${text}' within ${timeoutMs} ms: ${rec.lines.map((l) => l.text).join(' | ')}`));
-      else setTimeout(check, 5);
+    const log = () => texts.join(' | ');
+    const done = () => {
+      clearTimeout(timer);
+      watchers.delete(check);
     };
+    const check = () => {
+      const line = texts.find((t) => t.startsWith(text));
+      if (line !== undefined) {
+        done();
+        resolve(line);
+      } else if (rec.exit) {
+        done();
+        reject(new Error(`lines exited before printing '${text}': ${log()}`));
+      }
+    };
+    const timer = setTimeout(() => {
+      done();
+      reject(new Error(`no '${text}' within ${timeoutMs} ms: ${log()}`));
+    }, timeoutMs);
+    watchers.add(check);
     check();
   });
   ctx.extra.threads = (await seen('READY')).endsWith('threads=1');
