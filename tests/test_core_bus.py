@@ -23,6 +23,7 @@ CHECKS = [
     'async_lockers_all_proceed',
     'killed_mid_mutation_leaves_nothing_half_visible',
     'zombie_ring_is_drained_then_freed',
+    'dying_writer_is_still_read',
     'bus_grows_for_large_messages',
     'freed_blocks_wait_before_reuse',
     'qos_compatibility_rules',

@@ -128,6 +128,25 @@ const CHECKS = {
     assert.equal(Atomics.load(bus.i32, bus.ep(pub) + E.STATE), 0, 'drained: freed');
   },
 
+  /**
+   * While another thread removes a writer (its record is DYING, under the
+   * registry lock), a reader that was told "ready" still takes the message.
+   */
+  async dying_writer_is_still_read() {
+    const { bus, clients: [a, b] } = world(2);
+    const sub = endpoint(b, KIND_SUBSCRIPTION, b.createNode({ name: 'listener' }).index, '/d');
+    const pub = endpoint(a, KIND_PUBLISHER, a.createNode({ name: 'talker' }).index, '/d');
+    a.publish(pub, bytes(7));
+    assert.ok(b.hasData(sub), 'ready while the writer is alive');
+    // The state removeEndpoint() gives the record before it decides ZOMBIE or FREE.
+    Atomics.store(bus.i32, bus.ep(pub) + E.STATE, 2);
+    assert.ok(b.hasData(sub), 'still ready while the writer is being removed');
+    const m = b.take(sub);
+    assert.ok(m, 'taken while the writer is being removed');
+    assert.equal(m[0], 7);
+    assert.equal(b.take(sub), null);
+  },
+
   /** The bus grows (growable SharedArrayBuffer) for large messages; other threads see them. */
   async bus_grows_for_large_messages() {
     const { bus, clients: [a, b] } = world(2, { initialBytes: 4 << 20, maxBytes: 256 << 20, maxMessageBytes: 64 << 20 });

@@ -44,7 +44,7 @@ export class BusError extends Error {
   }
 }
 
-const REC_DYING = 2;
+export const REC_DYING = 2;
 /** A removed writer whose ring is kept until its readers drained it. */
 export const REC_ZOMBIE = 3;
 const H_NODE_HINT = 26;

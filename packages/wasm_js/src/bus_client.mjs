@@ -31,7 +31,7 @@
 
 import {
   Bus, BusError, Code, KIND_CLIENT, KIND_NODE, KIND_PUBLISHER, KIND_SERVICE, KIND_SUBSCRIPTION,
-  MAX_RING_SLOTS, REC_ZOMBIE, nextPow2, now,
+  MAX_RING_SLOTS, REC_DYING, REC_ZOMBIE, nextPow2, now,
 } from './bus.mjs';
 import {
   E, EP_FLAG_IGNORE_LOCAL, H, L, LINK_BEST_EFFORT, LINK_BLOCKING, LINK_TARGETED, N, P,
@@ -635,9 +635,12 @@ export class BusClient {
       const wb = bus.ep(writer);
       const wstate = i32[wb + E.STATE];
       if (wstate !== REC_ALIVE) {
-        if (wstate !== REC_ZOMBIE) continue;
+        // DYING: another thread is removing the writer under the registry
+        // lock. Its ring stays intact while this link holds untaken messages
+        // (it becomes a ZOMBIE), so a reader told "ready" still takes them.
+        if (wstate !== REC_ZOMBIE && wstate !== REC_DYING) continue;
         if (((Atomics.load(i32, wb + E.HEAD) - Atomics.load(i32, lb + L.CURSOR)) | 0) <= 0) {
-          (drained || (drained = [])).push(l);
+          if (wstate === REC_ZOMBIE) (drained || (drained = [])).push(l);
           continue;
         }
       }
