@@ -213,3 +213,22 @@ def test_colcon_wasm_run_gives_the_node_its_standard_input():
             process.kill()
             process.wait()
     assert '[core_node-1] LINE 2 second' in seen
+
+
+@pytest.mark.parametrize('platform', ['node', 'chromium'])
+def test_warm_host_boots_the_pthread_pool_ahead(platform):
+    """A pthread program on a warm host gets its pool workers booted ahead."""
+    run = harness.run(platform, 'prestarted_pthreads')
+    why = harness.explain(run)
+    extra = run['extra']
+    for name in ('ready', 'warming', 'none'):
+        # the program's thread ran and woke main() through the bus
+        assert harness.results(run, name)['guard_ready'] == '1', why
+        assert harness.exit_of(run, name)['code'] == 0, why
+    # the toolchain's default pool is 4 workers; all came from the warm host,
+    # also when spawn() took the host before it had finished warming up
+    assert extra['ready_prestarted'] == 4, why
+    assert extra['warming_prestarted'] == 4, why
+    # warmPthreadWorkers: 0 -> Emscripten booted its own
+    assert extra['none_prestarted'] == 0, why
+    assert 'thread line 49' in _lines(run, 'ready'), why

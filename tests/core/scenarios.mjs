@@ -365,6 +365,38 @@ const SCENARIOS = {
   },
 };
 
+SCENARIOS.prestarted_pthreads = async (ctx) => {
+  // A warm host boots the program's pthread pool ahead; its threads work.
+  // Three hosts: warm and ready, taken while still warming up, and one that
+  // boots no pthread workers (the program starts its own).
+  const main = ctx.rt;
+  const runOn = async (rt, name) => {
+    ctx.rt = rt;
+    try {
+      const proc = await start(ctx, name, 'threads', {});
+      await exits(ctx, [name]);
+      ctx.extra[`${name}_prestarted`] = proc.prestartedPthreadWorkers;
+    } finally {
+      ctx.rt = main;
+    }
+  };
+  await main.warm();
+  await runOn(main, 'ready');
+  const early = await ctx.Runtime.create({ maxMessageBytes: 4 * 1024 * 1024, maxBytes: 64 * 1024 * 1024 });
+  try {
+    await runOn(early, 'warming');
+  } finally {
+    await early.close();
+  }
+  const none = await ctx.Runtime.create({ maxMessageBytes: 4 * 1024 * 1024, maxBytes: 64 * 1024 * 1024, warmPthreadWorkers: 0 });
+  try {
+    await none.warm();
+    await runOn(none, 'none');
+  } finally {
+    await none.close();
+  }
+};
+
 SCENARIOS.io = async (ctx) => {
   // standard input, files and ROS_NAMESPACE reach the executable
   await start(ctx, 'io', 'io', {}, {
@@ -456,7 +488,7 @@ export async function run(name, env) {
   const fn = SCENARIOS[name];
   if (!fn) throw new Error(`unknown scenario '${name}' (known: ${names.join(', ')})`);
   const rt = await env.Runtime.create({ maxMessageBytes: env.maxMessageBytes || 4 * 1024 * 1024, maxBytes: 256 * 1024 * 1024 });
-  const ctx = { rt, exe: env.exe, procs: {}, extra: {} };
+  const ctx = { rt, Runtime: env.Runtime, exe: env.exe, procs: {}, extra: {} };
   const t0 = performance.now();
   let error = null;
   try {

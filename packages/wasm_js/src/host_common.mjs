@@ -11,6 +11,7 @@
 
 import { BusClient } from './bus_client.mjs';
 import { FromHost } from './protocol.mjs';
+import { PthreadPool } from './pthread_pool.mjs';
 import { StdinPipe } from './stdin_pipe.mjs';
 
 /**
@@ -24,6 +25,24 @@ import { StdinPipe } from './stdin_pipe.mjs';
  * @property {function(string): Promise<WebAssembly.Module>} compile compile a .wasm URL
  */
 
+/** This host's pre-started pthread workers (a warm host's), or null. */
+let pthreadPool = null;
+
+/**
+ * Boot pthread workers ahead of START (a warm host), so that a pthread
+ * program's pool is ready at once; see pthread_pool.mjs.
+ * @param {number} count how many (the program's `-sPTHREAD_POOL_SIZE`; 0: none)
+ * @param {string} busModuleUrl the bus client module they import ahead
+ * @param {function(): import('./pthread_pool.mjs').PthreadStub} createStub
+ * @returns {Promise<void>} resolves when they are ready (or failed: then
+ *   Emscripten starts its own workers)
+ */
+export async function prestartPthreadWorkers(count, busModuleUrl, createStub) {
+  if (!(count > 0) || !busModuleUrl) return;
+  pthreadPool = pthreadPool || new PthreadPool(createStub);
+  await pthreadPool.prestart(count, busModuleUrl);
+}
+
 /**
  * Turn `ROS_NAMESPACE` into a namespace remap, unless the arguments remap
  * `__ns` already. Humble's rcl does not read the variable (a ROS 1 habit
@@ -36,6 +55,35 @@ export function withNamespaceFromEnvironment(args, env) {
   const ns = env.ROS_NAMESPACE;
   if (!ns || args.some((a) => a.startsWith('__ns:='))) return args;
   return [...args, '--ros-args', '-r', `__ns:=${ns.startsWith('/') ? ns : '/' + ns}`];
+}
+
+/**
+ * Run `load` (the glue) with pre-started pthread workers in place of new
+ * ones. Emscripten's glue makes its pthread pool while it loads, with
+ * `new Worker(url)` (Emscripten 3.1.6: the pool's worker script, no
+ * options); under Node.js it first sets the global `Worker` itself, which
+ * the accessor records. Any other construction gets a real Worker.
+ * @param {function(): void} load
+ */
+function withPthreadStubs(load) {
+  if (!pthreadPool || pthreadPool.size === 0) {
+    load();
+    return;
+  }
+  const pool = pthreadPool;
+  let Real = globalThis.Worker;
+  function WorkerOrStub(url, options) {
+    const stub = options === undefined ? pool.take(String(url)) : null;
+    return stub || new Real(url, options);
+  }
+  Object.defineProperty(globalThis, 'Worker', {
+    configurable: true, enumerable: false, get: () => WorkerOrStub, set: (v) => { Real = v; },
+  });
+  try {
+    load();
+  } finally {
+    Object.defineProperty(globalThis, 'Worker', { configurable: true, enumerable: false, writable: true, value: Real });
+  }
 }
 
 /**
@@ -172,8 +220,8 @@ export async function startProcess(msg, platform) {
       },
     };
     globalThis.Module = Module;
-    platform.loadGlue(msg.url);
-    post({ type: FromHost.STARTED });
+    withPthreadStubs(() => platform.loadGlue(msg.url));
+    post({ type: FromHost.STARTED, prestartedPthreadWorkers: pthreadPool ? pthreadPool.taken : 0 });
   } catch (err) {
     exit(1, true, `cannot start ${msg.url}: ${err && err.message ? err.message : err}`);
     platform.close(1);

@@ -2,7 +2,8 @@
 
 /**
  * Node.js host worker (worker_threads). The Runtime may first post PRELOAD
- * (answered by READY: a warm host), then posts one START; see host_common.mjs. The glue runs in global scope, as in a browser worker,
+ * (boot pthread workers ahead, then answer READY: a warm host), then posts
+ * one START; see host_common.mjs. The glue runs in global scope, as in a browser worker,
  * with the CommonJS globals it expects (require, __filename, __dirname).
  *
  * @module node_host
@@ -12,14 +13,40 @@ import fs from 'node:fs';
 import { createRequire } from 'node:module';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { parentPort } from 'node:worker_threads';
+import { Worker, parentPort } from 'node:worker_threads';
 
-import { startProcess } from './host_common.mjs';
+import { prestartPthreadWorkers, startProcess } from './host_common.mjs';
+
+/** A pre-started pthread worker (see pthread_pool.mjs). */
+function pthreadStub() {
+  const worker = new Worker(new URL('./pthread_stub_node.mjs', import.meta.url), { name: 'wasm_js pthread' });
+  return {
+    worker,
+    listen(fn) {
+      const onMessage = (m) => fn(m);
+      const onError = (e) => fn({ colconWasmError: e && e.message ? e.message : String(e) });
+      const onExit = (code) => fn({ colconWasmError: `exited with code ${code}` });
+      worker.on('message', onMessage);
+      worker.on('error', onError);
+      worker.on('exit', onExit);
+      return () => {
+        worker.off('message', onMessage);
+        worker.off('error', onError);
+        worker.off('exit', onExit);
+      };
+    },
+    // An idle stub does not keep the host alive; Emscripten's workers do.
+    idle: () => worker.unref(),
+    busy: () => worker.ref(),
+  };
+}
 
 const onMessage = (msg) => {
   if (msg && msg.type === 'preload') {
     // The host module is a static import: already loaded.
-    parentPort.postMessage({ type: 'ready' });
+    prestartPthreadWorkers(msg.pthreadWorkers, msg.busModuleUrl, pthreadStub).finally(() => {
+      parentPort.postMessage({ type: 'ready' });
+    });
     return;
   }
   if (!msg || msg.type !== 'start') return;

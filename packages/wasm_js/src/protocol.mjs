@@ -9,7 +9,10 @@
 
 /** Runtime -> host worker. */
 export const ToHost = Object.freeze({
-  /** {type, hostModuleUrl}: import the host module now (a warm, idle host); answered by READY */
+  /**
+   * {type, hostModuleUrl, pthreadWorkers, busModuleUrl}: import the host module
+   * and boot `pthreadWorkers` pthread workers now (a warm, idle host); answered by READY
+   */
   PRELOAD: 'preload',
   /** {type, bus, pid, url, wasmUrl, glueFile, args, env, name, wasmModule, stdin (SharedArrayBuffer of a StdinPipe, or null), files, busModuleUrl, hostModuleUrl} */
   START: 'start',
@@ -21,7 +24,7 @@ export const FromHost = Object.freeze({
   READY: 'ready',
   /** {type, stream: 'stdout'|'stderr', text} one line */
   LOG: 'log',
-  /** {type} the glue is loaded and main() is about to run */
+  /** {type, prestartedPthreadWorkers} the glue is loaded and main() is about to run */
   STARTED: 'started',
   /** {type, code, crashed, reason} */
   EXIT: 'exit',

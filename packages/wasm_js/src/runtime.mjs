@@ -111,6 +111,11 @@ export class NodeProcess {
     this.spawnedAt = options.spawnedAt;
     /** performance.now() when the glue was loaded (main() about to run). */
     this.startedAt = null;
+    /**
+     * How many of its pthread pool workers were booted ahead by a warm host
+     * (known once started; 0 for a program without threads or a cold host).
+     */
+    this.prestartedPthreadWorkers = 0;
     this._runtime = runtime;
     this._worker = worker;
     this._options = options;
@@ -135,6 +140,7 @@ export class NodeProcess {
       }
     } else if (m.type === FromHost.STARTED) {
       this.startedAt = performance.now();
+      this.prestartedPthreadWorkers = m.prestartedPthreadWorkers || 0;
     } else if (m.type === FromHost.EXIT) {
       this._finish({ code: m.code, crashed: !!m.crashed, reason: m.reason || '' });
     }
@@ -248,6 +254,9 @@ export class Runtime {
    * @param {number} [options.maxEndpoints] @param {number} [options.maxLinks]
    * @param {number} [options.warmHosts=1] idle host workers kept ready (runtime modules
    *   loaded), so that spawn() does not wait for a worker to boot
+   * @param {number} [options.warmPthreadWorkers=4] pthread workers each warm host boots
+   *   ahead for a pthread program's pool (colcon-wasm's default
+   *   `-sPTHREAD_POOL_SIZE`); 0: none (a program then boots its own)
    * @returns {Promise<Runtime>}
    * @throws {IsolationError} when the page is not cross-origin isolated
    */
@@ -280,45 +289,52 @@ export class Runtime {
     this._tools = null;
     /** Warm hosts: started workers with the runtime modules loaded, waiting for a spawn. */
     this._warm = options.warmHosts === undefined ? 1 : options.warmHosts;
+    this._warmPthreadWorkers = options.warmPthreadWorkers === undefined ? 4 : options.warmPthreadWorkers;
     this._spares = [];
     this._fillSpares();
   }
 
-  /** Start an idle host worker that has imported the host module. */
-  async _newHost() {
-    const worker = await HostWorker.start(
+  /**
+   * Start an idle host worker: it imports the host module and boots pthread
+   * workers ahead (PRELOAD). A spawn may take it before it is ready: the host
+   * handles START after PRELOAD, with the pthread workers booted by then.
+   * @returns {{host: Promise<HostWorker>, ready: Promise<void>}}
+   */
+  _newHost() {
+    const host = HostWorker.start(
       isNode ? siblingUrl('node_host.mjs') : siblingUrl('web_host.js'), { name: 'wasm_js host', type: 'classic' });
-    await new Promise((resolve, reject) => {
+    const ready = host.then((worker) => new Promise((resolve, reject) => {
       worker.on('message', (m) => {
         if (m && m.type === FromHost.READY) resolve();
         else if (m && m.type === FromHost.EXIT) reject(new Error(m.reason));
       });
       worker.on('error', (e) => reject(new Error(e.message)));
-      worker.postMessage({ type: ToHost.PRELOAD, hostModuleUrl: siblingUrl('host_common.mjs') });
-    });
-    return worker;
+      worker.postMessage({
+        type: ToHost.PRELOAD, hostModuleUrl: siblingUrl('host_common.mjs'),
+        pthreadWorkers: this._warmPthreadWorkers, busModuleUrl: siblingUrl('bus_client.mjs'),
+      });
+    }));
+    host.catch(() => {});
+    ready.catch(() => {});
+    return { host, ready };
   }
 
   _fillSpares() {
-    while (!this._closed && this._spares.length < this._warm) {
-      const p = this._newHost();
-      p.catch(() => {});
-      this._spares.push(p);
-    }
+    while (!this._closed && this._spares.length < this._warm) this._spares.push(this._newHost());
   }
 
   /** Resolves when the warm host workers are ready (e.g. before timing a spawn). */
   async warm() {
-    await Promise.all(this._spares.map((p) => p.catch(() => {})));
+    await Promise.all(this._spares.map((s) => s.ready.catch(() => {})));
   }
 
-  /** A host worker for a spawn: a warm one when ready, else a new one. */
+  /** A host worker for a spawn: a warm one (even while it still warms up), else a new one. */
   async _host() {
     const spare = this._spares.shift();
     this._fillSpares();
     if (spare) {
       try {
-        return await spare;
+        return await spare.host;
       } catch (e) {
         // A broken spare: start one now.
       }
@@ -537,7 +553,7 @@ export class Runtime {
     const spares = this._spares;
     this._spares = [];
     this._warm = 0;
-    await Promise.all(spares.map((p) => p.then((w) => w.terminate(), () => {})));
+    await Promise.all(spares.map((s) => s.host.then((w) => w.terminate(), () => {})));
     await Promise.all([...this.processes.values()].map((p) => p.stop()));
     if (this._tools) {
       const tools = await this._tools;

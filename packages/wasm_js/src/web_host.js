@@ -2,7 +2,8 @@
 //
 // Browser host worker (a classic Web Worker, so that it can importScripts()
 // an Emscripten glue). The Runtime may first post PRELOAD (import the host
-// module, answer READY: a warm host), then posts one START; see host_common.mjs.
+// module, boot pthread workers ahead, answer READY: a warm host), then posts
+// one START; see host_common.mjs.
 'use strict';
 
 var hostModule = null;
@@ -10,6 +11,26 @@ var hostModule = null;
 function load(url) {
   if (!hostModule) hostModule = import(url);
   return hostModule;
+}
+
+// A pre-started pthread worker (see pthread_pool.mjs).
+function pthreadStub(url) {
+  var worker = new Worker(url, {name: 'wasm_js pthread'});
+  return {
+    worker: worker,
+    listen: function(fn) {
+      worker.onmessage = function(e) { fn(e.data); };
+      worker.onerror = function(e) {
+        e.preventDefault();
+        fn({colconWasmError: e.message || 'worker script error'});
+      };
+      // Emscripten sets its own handlers when it takes the worker.
+      return function() {
+        worker.onmessage = null;
+        worker.onerror = null;
+      };
+    },
+  };
 }
 
 function fail(reason) {
@@ -21,7 +42,11 @@ self.onmessage = function(e) {
   var msg = e.data;
   if (!msg) return;
   if (msg.type === 'preload') {
-    load(msg.hostModuleUrl).then(function() {
+    load(msg.hostModuleUrl).then(function(host) {
+      return host.prestartPthreadWorkers(msg.pthreadWorkers, msg.busModuleUrl, function() {
+        return pthreadStub(new URL('pthread_stub_web.js', msg.hostModuleUrl).href);
+      });
+    }).then(function() {
       self.postMessage({type: 'ready'});
     }, function(err) {
       fail('cannot load the wasm_js host (' + msg.hostModuleUrl + '): ' + err);

@@ -1,0 +1,31 @@
+// Copyright 2026 The colcon-wasm authors. Licensed under the Apache License 2.0.
+//
+// A pre-started Emscripten pthread worker for browsers (a classic Web Worker,
+// see pthread_pool.mjs): booted and with the bus client imported before the
+// program starts; told Emscripten's worker script, it imports it, and that
+// script's onmessage takes over.
+'use strict';
+
+// Taken before the import failed: Emscripten's script owns the messages
+// now, and an error message would confuse it.
+var taken = false;
+
+self.onmessage = function(e) {
+  var d = e.data;
+  if (d && typeof d.colconWasmPreload === 'string') {
+    import(d.colconWasmPreload).then(function() {
+      Atomics.store(d.state, d.index, 1);
+      Atomics.notify(d.state, d.index);
+    }, function(err) {
+      Atomics.store(d.state, d.index, 2);
+      Atomics.notify(d.state, d.index);
+      if (!taken) self.postMessage({colconWasmError: String(err && err.message || err)});
+    });
+    return;
+  }
+  if (d && typeof d.colconWasmWorkerScript === 'string') {
+    taken = true;
+    self.onmessage = null;
+    importScripts(d.colconWasmWorkerScript);
+  }
+};
