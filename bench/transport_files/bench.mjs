@@ -45,7 +45,12 @@ class Bench {
     this.trace = env.trace || (() => {});
   }
 
-  async runtime(warmHosts = 1) {
+  /**
+   * A runtime for one measurement. Only the node start measure keeps a warm
+   * host: a warm host boots a worker and its pthread pool again after each
+   * spawn, which would run beside a latency or throughput measurement.
+   */
+  async runtime(warmHosts = 0) {
     return this.env.Runtime.create({ maxMessageBytes: 2 * 1024 * 1024, maxBytes: 1024 * 1024 * 1024, warmHosts });
   }
 
