@@ -85,9 +85,11 @@ async function main() {
   const session = new Session(workspace);
   // for the browser console: colconWasm.session.runtime, .graph, .processes
   window.colconWasm = { session };
-  // start the runtime first: the views below build while its modules load
-  const starting = window.crossOriginIsolated ? session.start() : null;
-  if (starting) starting.catch(() => {});
+  // Start the runtime first, and build the views once it exists: its host
+  // worker then boots (on another thread) while they build. (A failure is
+  // shown below, once the views are there.)
+  const starting = window.crossOriginIsolated ? session.start(runRequests().length) : null;
+  if (starting) await starting.catch(() => {});
   const banners = h('div.banners');
   const side = h('aside.side');
   const main = h('main.main');

@@ -328,10 +328,15 @@ export class Runtime {
     await Promise.all(this._spares.map((s) => s.ready.catch(() => {})));
   }
 
-  /** A host worker for a spawn: a warm one (even while it still warms up), else a new one. */
+  /**
+   * A host worker for a spawn: a warm one (even while it still warms up),
+   * else a new one. The next warm host boots once this one is ready, so that
+   * its workers do not compete with the starting program for the cores.
+   */
   async _host() {
     const spare = this._spares.shift();
-    this._fillSpares();
+    if (spare) spare.ready.then(() => this._fillSpares(), () => this._fillSpares());
+    else this._fillSpares();
     if (spare) {
       try {
         return await spare.host;
