@@ -8,9 +8,10 @@
  * glue into it and instantiated the module: ~150 ms on two cores, most of it
  * booting workers (a Node.js worker thread takes ~30 ms to boot). A warm host
  * boots these workers ahead, as stubs that have also imported the bus
- * client. At start, library_wasm_bus.js asks `Module.takePthreadWorker(url)`
- * for each pool worker Emscripten creates; a stub told `url` (Emscripten's
- * worker script) loads it, and from then on it is Emscripten's worker.
+ * client. While the glue loads, host_common.mjs hands Emscripten a stub for
+ * each `new Worker(url)` it makes for its pool (withPthreadStubs); a stub
+ * told `url` (Emscripten's worker script) loads it, and from then on it is
+ * Emscripten's worker.
  *
  * Stub protocol (pthread_stub_node.mjs, pthread_stub_web.js): one message
  * each way at most, so that nothing of ours reaches Emscripten's handlers:
