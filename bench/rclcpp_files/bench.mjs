@@ -125,7 +125,10 @@ class Bench {
     }
   }
 
-  /** Node start: spawn() → the first message of bench_hello, seen by the tools worker. */
+  /**
+   * Node start: spawn() → the first message of bench_hello, seen by the tools
+   * worker; on a warm host (its pthread pool booted ahead), with the shared module.
+   */
   async start(url, args, type) {
     const rt = await this.runtime();
     try {
@@ -137,6 +140,7 @@ class Bench {
       const wasmUrl = new URL(url.replace(/\.js$/, '.wasm'),
         typeof location === 'undefined' ? 'file:///' : location.href).href;
       await rt.compiledModule(wasmUrl);
+      await rt.warm();
       const t0 = performance.timeOrigin + performance.now();
       const proc = await rt.spawn({ url, args, name: 'hello' });
       const sourceTime = await first;
