@@ -88,7 +88,7 @@ async function main() {
   // Start the runtime first, and build the views once it exists: its host
   // worker then boots (on another thread) while they build. (A failure is
   // shown below, once the views are there.)
-  const starting = window.crossOriginIsolated ? session.start(runRequests().length) : null;
+  const starting = window.crossOriginIsolated ? session.start() : null;
   if (starting) await starting.catch(() => {});
   const banners = h('div.banners');
   const side = h('aside.side');

@@ -15,9 +15,9 @@
  *
  * Stub protocol (pthread_stub_node.mjs, pthread_stub_web.js): one message
  * each way at most, so that nothing of ours reaches Emscripten's handlers:
- *   host -> stub {colconWasmPreload: busModuleUrl, state: Int32Array, index}
- *     the stub imports the module, then stores 1 (ready) or 2 (failed) at
- *     state[index] (and, failed and not yet taken, posts {colconWasmError})
+ *   host -> stub {colconWasmPreload: busModuleUrl, state: Int32Array(1)}
+ *     the stub imports the module, then stores 1 (ready) or 2 (failed) in
+ *     state[0] (and, failed and not yet taken, posts {colconWasmError})
  *   host -> stub {colconWasmWorkerScript: url}
  *     the stub loads url (once); its onmessage takes over
  * A stub is handed out booting or ready; its messages wait in its queue.
@@ -48,12 +48,8 @@ export class PthreadPool {
     this._create = createStub;
     /** Untaken stubs, oldest first. @type {PthreadStub[]} */
     this._stubs = [];
-    /** Why the last stub failed (for messages), or ''. */
-    this.error = '';
     /** Stubs handed to Emscripten so far. */
     this.taken = 0;
-    this._next = 0;
-    this._state = null;
   }
 
   /** Number of untaken stubs (booting or ready). */
@@ -74,16 +70,8 @@ export class PthreadPool {
     await Promise.all(starts);
   }
 
-  _slot() {
-    if (!this._state || this._next >= this._state.length) {
-      this._state = new Int32Array(new SharedArrayBuffer(4 * 16));
-      this._next = 0;
-    }
-    return [this._state, this._next++];
-  }
-
-  _drop(stub, why) {
-    this.error = why;
+  /** Stop a stub that failed before it was taken. */
+  _drop(stub) {
     const i = this._stubs.indexOf(stub);
     if (i < 0) return;
     this._stubs.splice(i, 1);
@@ -96,23 +84,19 @@ export class PthreadPool {
     try {
       stub = this._create();
     } catch (e) {
-      this.error = `cannot start a pthread worker: ${e && e.message ? e.message : e}`;
-      return;
+      return; // Emscripten starts its own worker instead
     }
-    const [state, index] = this._slot();
-    stub.state = state;
-    stub.index = index;
+    // BOOTING, READY or FAILED, written by the stub
+    stub.state = new Int32Array(new SharedArrayBuffer(4));
     this._stubs.push(stub);
     // Until it is taken: its death, or its failure to import the bus module.
     stub.stop = stub.listen((m) => {
-      if (m && m.colconWasmError !== undefined) {
-        this._drop(stub, `a pthread worker failed before it was used (${busModuleUrl}): ${m.colconWasmError}`);
-      }
+      if (m && m.colconWasmError !== undefined) this._drop(stub);
     });
-    stub.worker.postMessage({ colconWasmPreload: busModuleUrl, state, index });
-    const w = Atomics.waitAsync(state, index, BOOTING);
+    stub.worker.postMessage({ colconWasmPreload: busModuleUrl, state: stub.state });
+    const w = Atomics.waitAsync(stub.state, 0, BOOTING);
     if (w.async) await w.value;
-    if (Atomics.load(state, index) === READY && this._stubs.includes(stub) && stub.idle) stub.idle();
+    if (Atomics.load(stub.state, 0) === READY && this._stubs.includes(stub) && stub.idle) stub.idle();
   }
 
   /**
@@ -122,9 +106,9 @@ export class PthreadPool {
    */
   take(url) {
     for (const s of [...this._stubs]) {
-      if (Atomics.load(s.state, s.index) === FAILED) this._drop(s, 'a pthread worker could not import the bus module');
+      if (Atomics.load(s.state, 0) === FAILED) this._drop(s);
     }
-    let i = this._stubs.findIndex((s) => Atomics.load(s.state, s.index) === READY);
+    let i = this._stubs.findIndex((s) => Atomics.load(s.state, 0) === READY);
     if (i < 0) i = this._stubs.length ? 0 : -1;
     if (i < 0) return null;
     const [stub] = this._stubs.splice(i, 1);

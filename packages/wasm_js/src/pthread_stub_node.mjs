@@ -18,13 +18,13 @@ let taken = false;
 
 const onMessage = (msg) => {
   if (msg && typeof msg.colconWasmPreload === 'string') {
-    const { state, index } = msg;
+    const { state } = msg;
     import(msg.colconWasmPreload).then(() => {
-      Atomics.store(state, index, 1);
-      Atomics.notify(state, index);
+      Atomics.store(state, 0, 1);
+      Atomics.notify(state, 0);
     }, (err) => {
-      Atomics.store(state, index, 2);
-      Atomics.notify(state, index);
+      Atomics.store(state, 0, 2);
+      Atomics.notify(state, 0);
       if (!taken) parentPort.postMessage({ colconWasmError: String(err && err.message || err) });
     });
     return;

@@ -14,11 +14,11 @@ self.onmessage = function(e) {
   var d = e.data;
   if (d && typeof d.colconWasmPreload === 'string') {
     import(d.colconWasmPreload).then(function() {
-      Atomics.store(d.state, d.index, 1);
-      Atomics.notify(d.state, d.index);
+      Atomics.store(d.state, 0, 1);
+      Atomics.notify(d.state, 0);
     }, function(err) {
-      Atomics.store(d.state, d.index, 2);
-      Atomics.notify(d.state, d.index);
+      Atomics.store(d.state, 0, 2);
+      Atomics.notify(d.state, 0);
       if (!taken) self.postMessage({colconWasmError: String(err && err.message || err)});
     });
     return;

@@ -243,6 +243,12 @@ export class NodeProcess {
 /**
  * The middleware runtime of one page or Node.js process.
  */
+/** Start a host worker (node_host.mjs or web_host.js). */
+function startHostWorker() {
+  return HostWorker.start(
+    isNode ? siblingUrl('node_host.mjs') : siblingUrl('web_host.js'), { name: 'wasm_js host', type: 'classic' });
+}
+
 export class Runtime {
   /**
    * Create the bus and the runtime.
@@ -301,8 +307,7 @@ export class Runtime {
    * @returns {{host: Promise<HostWorker>, ready: Promise<void>}}
    */
   _newHost() {
-    const host = HostWorker.start(
-      isNode ? siblingUrl('node_host.mjs') : siblingUrl('web_host.js'), { name: 'wasm_js host', type: 'classic' });
+    const host = startHostWorker();
     const ready = host.then((worker) => new Promise((resolve, reject) => {
       worker.on('message', (m) => {
         if (m && m.type === FromHost.READY) resolve();
@@ -335,17 +340,16 @@ export class Runtime {
    */
   async _host() {
     const spare = this._spares.shift();
-    if (spare) spare.ready.then(() => this._fillSpares(), () => this._fillSpares());
-    else this._fillSpares();
-    if (spare) {
-      try {
-        return await spare.host;
-      } catch (e) {
-        // A broken spare: start one now.
-      }
+    if (!spare) {
+      this._fillSpares();
+      return startHostWorker();
     }
-    return HostWorker.start(
-      isNode ? siblingUrl('node_host.mjs') : siblingUrl('web_host.js'), { name: 'wasm_js host', type: 'classic' });
+    spare.ready.then(() => this._fillSpares(), () => this._fillSpares());
+    try {
+      return await spare.host;
+    } catch (e) {
+      return startHostWorker(); // a broken spare: start one now
+    }
   }
 
   async _allocPid(kind) {
