@@ -15,6 +15,28 @@ FIXTURES = Path(__file__).resolve().parent / 'fixtures'
 BIN = Path(sys.executable).parent
 
 
+def use_repo_venv():
+    """
+    Run the calling script again with the repository's .venv Python.
+
+    For the bench/ scripts: their shebang is the system python3, which lacks
+    colcon-wasm when it was installed into .venv (the README's set-up).
+    Nothing happens when the running Python already imports colcon_wasm or
+    when there is no .venv.
+    """
+    try:
+        import colcon_wasm  # noqa: F401
+        return
+    except ImportError:
+        pass
+    venv_python = REPO / '.venv' / 'bin' / 'python'
+    if venv_python.exists() and Path(sys.executable) != venv_python:
+        os.execv(str(venv_python), [str(venv_python)] + sys.argv)
+    sys.exit('colcon-wasm is not installed for ' + sys.executable
+             + ': follow the README set-up (python3 -m venv .venv && '
+             ".venv/bin/pip install -e '.[test]'), then run this again")
+
+
 def tool(name):
     """Get a console script of the environment running the tests."""
     path = BIN / name

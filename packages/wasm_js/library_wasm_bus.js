@@ -318,18 +318,31 @@ var LibraryWasmBus = {
   // Returns 1 when taken, 0 when nothing is there, -code on failure.
   // info (wasm_bus_take_info): f64 source ms, f64 received ms, u32 pub seq lo/hi,
   // u32 reception seq lo/hi, i32 gid[4], u32 request seq lo/hi, i32 same process,
-  // i32 length, i32 data pointer.
+  // i32 length, i32 data pointer, i32 capacity. On entry, data and capacity name
+  // the caller's reusable buffer (data 0: none): a message that fits is copied
+  // there without calling the allocator.
   wasm_bus_take__deps: ['$WasmBus'],
   wasm_bus_take: function(ep, mode, allocFn, deallocFn, state, info) {
     try {
       var c = WasmBus.client;
+      WasmBus.heapFor(info + 72);
+      // The caller's reusable buffer (info.data, info.capacity), if any.
+      var buffer = WasmBus.hi32[(info >> 2) + 16];
+      var capacity = buffer ? WasmBus.hi32[(info >> 2) + 17] : -1;
       for (;;) {
         var len = c.takeBegin(ep, mode);
         if (len < 0) return 0;
-        var ptr = WasmBus.tableFn(0, allocFn)(len > 0 ? len : 1, state);
-        if (!ptr) {
-          WasmBus.error = 'take on \'' + c.endpointName(ep) + '\' failed: the allocator returned null for ' + len + ' bytes';
-          return -10;
+        var ptr = buffer;
+        if (len > capacity) {
+          // The allocator may move or free the caller's buffer (realloc): from
+          // now on this call uses only what the allocator returns.
+          buffer = 0;
+          capacity = -1;
+          ptr = WasmBus.tableFn(0, allocFn)(len > 0 ? len : 1, state);
+          if (!ptr) {
+            WasmBus.error = 'take on \'' + c.endpointName(ep) + '\' failed: the allocator returned null for ' + len + ' bytes';
+            return -10;
+          }
         }
         WasmBus.heapFor(Math.max(ptr + len, info + 72)); // the allocator may have grown the heap
         if (c.takeCopy(WasmBus.hu8, ptr)) {
@@ -354,7 +367,7 @@ var LibraryWasmBus = {
           w[o + 16] = ptr;
           return 1;
         }
-        WasmBus.tableFn(1, deallocFn)(ptr, state);
+        if (ptr !== buffer) WasmBus.tableFn(1, deallocFn)(ptr, state);
       }
     } catch (e) {
       return -WasmBus.fail(e);

@@ -14,7 +14,9 @@
 
 #include "bus_abi.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <string>
@@ -110,19 +112,19 @@ double timeout_ms(Timeout timeout)
   return static_cast<double>(timeout.count()) / 1e6;
 }
 
-Gid gid_from_words(const int32_t * words)
+Gid gid_from_words(const int32_t * words) noexcept
 {
   Gid g;
   std::memcpy(g.data.data(), words, kGidSize);
   return g;
 }
 
-void gid_to_words(const Gid & gid, int32_t * words)
+void gid_to_words(const Gid & gid, int32_t * words) noexcept
 {
   std::memcpy(words, gid.data.data(), kGidSize);
 }
 
-int64_t ms_to_ns(double ms)
+int64_t ms_to_ns(double ms) noexcept
 {
   return static_cast<int64_t>(std::llround(ms * 1e6));
 }
@@ -143,6 +145,24 @@ const Allocator & malloc_allocator()
   return a;
 }
 
+Allocator reusing_allocator(const Message & message)
+{
+  Allocator a = malloc_allocator();
+  a.buffer = message.data.get();
+  a.capacity = message.data ? message.capacity : 0;
+  return a;
+}
+
+void adopt(Message * message, uint8_t * data, size_t size)
+{
+  if (data != message->data.get()) {
+    message->data.reset(data);
+    // A new buffer from malloc_allocate(): exactly the message (1 byte when empty).
+    message->capacity = size > 0 ? size : 1;
+  }
+  message->size = size;
+}
+
 Status take(
   int ep, int mode, const Allocator & allocator, uint8_t ** data, size_t * size,
   wasm_bus_take_info * info, bool * taken, const char * what, const std::string & name)
@@ -159,6 +179,9 @@ Status take(
     return Status(
       Code::kInvalidArgument, std::string(what) + " '" + name + "': the entity was shut down");
   }
+  info->data = static_cast<int32_t>(reinterpret_cast<uintptr_t>(allocator.buffer));
+  info->capacity = allocator.buffer == nullptr ? 0 : static_cast<int32_t>(
+    std::min<size_t>(allocator.capacity, static_cast<size_t>(INT32_MAX)));
   int r = wasm_bus_take(ep, mode, allocator.allocate, allocator.deallocate, allocator.state, info);
   if (r < 0) {
     return bus_status(-r, (std::string(what) + " '" + name + "'").c_str());

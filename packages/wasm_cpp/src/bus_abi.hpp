@@ -43,42 +43,46 @@ struct wasm_bus_take_info
   uint32_t req_seq_lo;
   uint32_t req_seq_hi;
   int32_t same_process;
+  /// In: the caller's buffer (0: none) and its capacity; out: where the message is, its length.
   int32_t length;
   int32_t data;
-  int32_t reserved;
+  int32_t capacity;
 };
 
-int wasm_bus_attached(void);
-int wasm_bus_last_error(char * buf, int cap);
-int wasm_bus_process_id(void);
-int wasm_bus_max_message(void);
-int wasm_bus_context_create(void);
+// The wasm_js library catches every JS exception and returns an error code,
+// so no call unwinds: noexcept spares Emscripten's exception wrappers
+// (invoke_*, a JS round trip) around each call from code with cleanups.
+int wasm_bus_attached(void) noexcept;
+int wasm_bus_last_error(char * buf, int cap) noexcept;
+int wasm_bus_process_id(void) noexcept;
+int wasm_bus_max_message(void) noexcept;
+int wasm_bus_context_create(void) noexcept;
 int wasm_bus_node_create(
   int domain, int context, const char * name, const char * ns, const char * enclave,
-  int32_t * out);
-int wasm_bus_node_destroy(int node);
+  int32_t * out) noexcept;
+int wasm_bus_node_destroy(int node) noexcept;
 int wasm_bus_endpoint_create(
   int kind, int node, const char * name, const char * type, int32_t * qos, int flags,
-  int keep_all_depth, int32_t * out);
-int wasm_bus_endpoint_destroy(int ep);
-int wasm_bus_publish(int ep, const void * data, int len, double timeout_ms, uint32_t * seq);
+  int keep_all_depth, int32_t * out) noexcept;
+int wasm_bus_endpoint_destroy(int ep) noexcept;
+int wasm_bus_publish(int ep, const void * data, int len, double timeout_ms, uint32_t * seq) noexcept;
 int wasm_bus_send_response(
   int ep, const int32_t * gid, uint32_t seq_lo, uint32_t seq_hi, const void * data, int len,
-  double timeout_ms);
+  double timeout_ms) noexcept;
 int wasm_bus_take(
   int ep, int mode, void * (*allocate)(size_t, void *), void (* deallocate)(void *, void *),
-  void * state, wasm_bus_take_info * info);
-int wasm_bus_has_data(int ep, int mode);
-int wasm_bus_matched_count(int ep);
-int wasm_bus_assert_liveliness(int ep);
-int wasm_bus_wait_for_acked(int ep, double timeout_ms);
-int wasm_bus_wait(int32_t * items, int count, double timeout_ms);
-int wasm_bus_listen(int32_t * items, int count, double timeout_ms);
-void wasm_bus_listen_forget(int ep);
-int wasm_bus_event_status(int ep, int type, int take, int32_t * status);
-void wasm_bus_ring_self(void);
-int wasm_bus_graph_version(void);
-int wasm_bus_graph(int domain, uint8_t ** out, int * out_len);
+  void * state, wasm_bus_take_info * info) noexcept;
+int wasm_bus_has_data(int ep, int mode) noexcept;
+int wasm_bus_matched_count(int ep) noexcept;
+int wasm_bus_assert_liveliness(int ep) noexcept;
+int wasm_bus_wait_for_acked(int ep, double timeout_ms) noexcept;
+int wasm_bus_wait(int32_t * items, int count, double timeout_ms) noexcept;
+int wasm_bus_listen(int32_t * items, int count, double timeout_ms) noexcept;
+void wasm_bus_listen_forget(int ep) noexcept;
+int wasm_bus_event_status(int ep, int type, int take, int32_t * status) noexcept;
+void wasm_bus_ring_self(void) noexcept;
+int wasm_bus_graph_version(void) noexcept;
+int wasm_bus_graph(int domain, uint8_t ** out, int * out_len) noexcept;
 
 }  // extern "C"
 
@@ -123,13 +127,13 @@ QoS qos_from_wire(const int32_t * words);
 double timeout_ms(Timeout timeout);
 
 /// A gid from four little-endian words.
-Gid gid_from_words(const int32_t * words);
+Gid gid_from_words(const int32_t * words) noexcept;
 
 /// Four words from a gid.
-void gid_to_words(const Gid & gid, int32_t * words);
+void gid_to_words(const Gid & gid, int32_t * words) noexcept;
 
 /// Nanoseconds since the epoch from bus milliseconds.
-int64_t ms_to_ns(double ms);
+int64_t ms_to_ns(double ms) noexcept;
 
 /// Take one message of endpoint `ep` with `allocator`; fills `info`.
 /**
@@ -142,6 +146,12 @@ Status take(
 
 /// The Allocator that uses std::malloc / std::free.
 const Allocator & malloc_allocator();
+
+/// A malloc Allocator that fills `message`'s buffer when the next message fits.
+Allocator reusing_allocator(const Message & message);
+
+/// Make `message` hold what take() returned with reusing_allocator(message).
+void adopt(Message * message, uint8_t * data, size_t size);
 
 /// What create_endpoint() returns.
 struct EndpointHandle

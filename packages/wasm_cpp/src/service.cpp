@@ -97,10 +97,9 @@ Status Service::take_request(Message * message, ServiceInfo * info, bool * taken
   }
   uint8_t * data = nullptr;
   size_t size = 0;
-  Status s = take_request(detail::malloc_allocator(), &data, &size, info, taken);
+  Status s = take_request(detail::reusing_allocator(*message), &data, &size, info, taken);
   if (s.ok() && *taken) {
-    message->data.reset(data);
-    message->size = size;
+    detail::adopt(message, data, size);
   }
   return s;
 }
@@ -234,10 +233,9 @@ Status Client::take_response(Message * message, ServiceInfo * info, bool * taken
   }
   uint8_t * data = nullptr;
   size_t size = 0;
-  Status s = take_response(detail::malloc_allocator(), &data, &size, info, taken);
+  Status s = take_response(detail::reusing_allocator(*message), &data, &size, info, taken);
   if (s.ok() && *taken) {
-    message->data.reset(data);
-    message->size = size;
+    detail::adopt(message, data, size);
   }
   return s;
 }

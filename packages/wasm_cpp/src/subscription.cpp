@@ -63,10 +63,9 @@ Status Subscription::take(Message * message, MessageInfo * info, bool * taken)
   }
   uint8_t * data = nullptr;
   size_t size = 0;
-  Status s = take(detail::malloc_allocator(), &data, &size, info, taken);
+  Status s = take(detail::reusing_allocator(*message), &data, &size, info, taken);
   if (s.ok() && *taken) {
-    message->data.reset(data);
-    message->size = size;
+    detail::adopt(message, data, size);
   }
   return s;
 }

@@ -18,7 +18,7 @@
  */
 
 export const MAGIC = 0x53554257; // 'WBUS'
-export const LAYOUT_VERSION = 1;
+export const LAYOUT_VERSION = 2;
 
 /** Header words. */
 export const H = Object.freeze({
@@ -193,7 +193,8 @@ export const L = Object.freeze({
   DEPTH: 5,
   WRITER_SERIAL: 6,
   READER_SERIAL: 7,
-  WORDS: 8,
+  /** A cache line (64 bytes) each: a reader's cursor shares no line with another link's. */
+  WORDS: 16,
 });
 /** The writer must not overwrite a message this reader has not taken. */
 export const LINK_BLOCKING = 1;

@@ -122,6 +122,8 @@ rmw_ret_t SubscriptionData::take_serialized(
     };
   allocator.deallocate = [](void *, void *) {};
   allocator.state = &target;
+  allocator.buffer = message->buffer;
+  allocator.capacity = message->buffer == nullptr ? 0 : message->buffer_capacity;
   uint8_t * data = nullptr;
   size_t size = 0;
   wasm_cpp::MessageInfo info;

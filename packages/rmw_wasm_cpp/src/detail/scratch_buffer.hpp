@@ -68,6 +68,9 @@ public:
       };
     a.deallocate = [](void *, void *) {};
     a.state = this;
+    // A message that fits is copied here without a call to allocate().
+    a.buffer = data_;
+    a.capacity = capacity_;
     return a;
   }
 

@@ -58,7 +58,12 @@ struct MessageInfo
 {
   /// When the publisher published it, nanoseconds since the Unix epoch.
   int64_t source_timestamp = 0;
-  /// When this subscription took it, nanoseconds since the Unix epoch.
+  /// When it reached this subscription's history, nanoseconds since the Unix epoch.
+  /**
+   * On the bus a message reaches every matched subscription the moment its
+   * publisher commits it to shared memory, so this equals source_timestamp
+   * (as a DDS reception timestamp, it is not the time of the take).
+   */
   int64_t received_timestamp = 0;
   /// The publisher's sequence number for the message, starting at 1.
   uint64_t publication_sequence_number = 0;
@@ -75,7 +80,7 @@ struct ServiceInfo
 {
   /// When the request/response was sent, nanoseconds since the Unix epoch.
   int64_t source_timestamp = 0;
-  /// When it was taken, nanoseconds since the Unix epoch.
+  /// When it reached the server's (or client's) queue: equal to source_timestamp on the bus.
   int64_t received_timestamp = 0;
   /// The request this message is or answers.
   RequestId request_id;
@@ -87,27 +92,36 @@ struct FreeDeleter
   void operator()(uint8_t * p) const {std::free(p);}
 };
 
-/// A message taken from the bus: bytes in a malloc'd buffer now owned by the caller.
+/// A message taken from the bus: bytes in a malloc'd buffer owned by the caller.
 /**
  * The bytes were copied once, from the bus straight into this buffer.
- * `data` is null when `size` is 0.
+ * Taking into the same Message again reuses the buffer when the next message
+ * fits (`capacity` bytes), so steady traffic allocates nothing; `data` is
+ * null only before the first take.
  */
 struct Message
 {
   std::unique_ptr<uint8_t[], FreeDeleter> data;
   size_t size = 0;
+  /// Bytes `data` can hold.
+  size_t capacity = 0;
 };
 
 /// An allocator in rcutils_allocator_t's shape, so that take() can write into caller memory.
 /**
  * `allocate(size, state)` must return `size` writable bytes or null;
  * `deallocate(pointer, state)` releases what `allocate` returned.
+ * `buffer` (optional) is memory of `capacity` bytes that take() fills without
+ * calling either function when the message fits: a reused scratch buffer
+ * spares an allocation and a call per message.
  */
 struct Allocator
 {
   void * (*allocate)(size_t size, void * state) = nullptr;
   void (* deallocate)(void * pointer, void * state) = nullptr;
   void * state = nullptr;
+  uint8_t * buffer = nullptr;
+  size_t capacity = 0;
 };
 
 /// A timeout: a negative value means "wait forever", zero means "do not block".
