@@ -10,10 +10,10 @@
 const SIZES = [64, 1024, 64 * 1024, 1024 * 1024];
 
 /** Latency samples per size (ours and raw ring; the poll design takes ~10 ms each). */
-const LATENCY_COUNT = { 64: 2000, 1024: 2000, 65536: 500, 1048576: 100 };
+const LATENCY_COUNT = { 64: 2000, 1024: 2000, 65536: 2000, 1048576: 200 };
 const POLL_COUNT = 20;
 /** Round trips before measuring (JIT warm-up). */
-const WARMUP = { 64: 2000, 1024: 2000, 65536: 200, 1048576: 20 };
+const WARMUP = { 64: 2000, 1024: 2000, 65536: 3000, 1048576: 200 };
 
 function percentile(sorted, p) {
   return sorted[Math.min(sorted.length - 1, Math.floor(p * sorted.length))];
