@@ -32,6 +32,7 @@ CHECKS = [
     'lifespan_expired_messages_are_skipped',
     'best_effort_overrun_counts_lost',
     'keep_all_blocks_then_times_out',
+    'blocked_writer_goes_on_when_its_reader_stops_mid_batch',
 ]
 
 

@@ -30,6 +30,16 @@ def test_100000_messages_arrive_lossless_and_in_order(platform):
 
 
 @pytest.mark.parametrize('platform', PLATFORMS)
+def test_messages_of_changing_sizes_arrive_intact_in_a_reused_buffer(platform):
+    run = harness.run(platform, 'varying_sizes')
+    sub = harness.results(run, 'sub')
+    why = harness.explain(run)
+    assert sub['received'] == '600', why
+    assert (sub['bad'], sub['out_of_order'], sub['lost']) == ('0', '0', '0'), why
+    assert harness.exit_of(run, 'sub')['code'] == 0, why
+
+
+@pytest.mark.parametrize('platform', PLATFORMS)
 def test_one_publisher_fans_out_to_four_subscribers(platform):
     run = harness.run(platform, 'fanout')
     assert harness.results(run, 'pub')['matched'] == '4', harness.explain(run)

@@ -13,6 +13,7 @@
 import assert from 'node:assert/strict';
 import path from 'node:path';
 import { pathToFileURL } from 'node:url';
+import { Worker } from 'node:worker_threads';
 
 const [srcDir, name] = process.argv.slice(2);
 const src = (file) => pathToFileURL(path.join(path.resolve(srcDir), file)).href;
@@ -286,6 +287,46 @@ const CHECKS = {
     let m;
     while ((m = b.take(sub))) got.push(m[0]);
     assert.deepEqual(got, [1, 2, 3, 4], 'nothing dropped');
+  },
+
+  /**
+   * A writer blocked on a full KEEP_ALL ring goes on soon after its reader
+   * frees a slot, even when the reader then stops short of the point where
+   * it rings writers (every eighth of the ring, or when it has taken
+   * everything): the writer looks again meanwhile. Here the reader takes one
+   * message of 64 and then takes nothing for 3 s; a writer woken only by
+   * rings would stay blocked until its 2 s timeout.
+   */
+  async blocked_writer_goes_on_when_its_reader_stops_mid_batch() {
+    const { bus, clients: [a, b] } = world(2);
+    const sub = endpoint(b, KIND_SUBSCRIPTION, b.createNode({ name: 'reader' }).index, '/ka', { history: 'keep_all' });
+    const pub = endpoint(a, KIND_PUBLISHER, a.createNode({ name: 'writer' }).index, '/ka', { history: 'keep_all' }, { keepAllDepth: 64 });
+    for (let i = 0; i < 64; i++) a.publish(pub, bytes(i), 0);
+    const reader = new Worker(`
+      const { workerData: d, parentPort } = require('node:worker_threads');
+      (async () => {
+        const { Bus } = await import(d.bus);
+        const { BusClient } = await import(d.client);
+        const c = new BusClient(Bus.attach(d.sab), d.pid);
+        const pause = (ms) => Atomics.wait(new Int32Array(new SharedArrayBuffer(4)), 0, 0, ms);
+        pause(50);
+        parentPort.postMessage({ first: c.take(d.sub)[0] });
+        pause(3000);
+      })();
+    `, { eval: true, workerData: { sab: bus.sab, pid: b.pid, sub, bus: src('bus.mjs'), client: src('bus_client.mjs') } });
+    const first = new Promise((resolve, reject) => { reader.on('message', resolve); reader.on('error', reject); });
+    const t0 = performance.now();
+    a.publish(pub, bytes(64), 2000);
+    const blockedMs = performance.now() - t0;
+    const r = await first;
+    await reader.terminate();
+    assert.equal(r.first, 0, 'the reader took the oldest message');
+    assert.ok(blockedMs < 1000, `the writer went on ${blockedMs.toFixed(1)} ms after it blocked (a slot was free after ~50 ms)`);
+    const got = [];
+    let m;
+    while ((m = b.take(sub))) got.push(m[0]);
+    assert.equal(got.length, 64, 'nothing dropped');
+    assert.equal(got[63], 64, 'the blocked message came last');
   },
 };
 

@@ -136,6 +136,18 @@ const SCENARIOS = {
     await exits(ctx, ['sub', 'pub']);
   },
 
+  /**
+   * Messages of changing sizes (grow, shrink, grow past the last buffer),
+   * all taken after the publisher finished, into one reused Message.
+   */
+  async varying_sizes(ctx) {
+    await start(ctx, 'sub', 'sub', { qos: 'keep_all', count: 600, 'wait-signal': '/test/sizes_done' });
+    await start(ctx, 'pub', 'pub', {
+      qos: 'keep_all', count: 600, sizes: '16,5000,8,70000,300,1500,69999,9', 'keep-all-depth': 1024, signal: '/test/sizes_done',
+    });
+    await exits(ctx, ['sub', 'pub']);
+  },
+
   /** One publisher fans out to 4 subscribers. */
   async fanout(ctx) {
     const subs = ['s1', 's2', 's3', 's4'];

@@ -153,6 +153,24 @@ QoS parse_qos(const std::string & spec)
   return q;
 }
 
+// The non-empty fields of `text` separated by `sep`.
+std::vector<std::string> split(const std::string & text, char sep)
+{
+  std::vector<std::string> fields;
+  size_t start = 0;
+  while (start <= text.size()) {
+    size_t end = text.find(sep, start);
+    if (end == std::string::npos) {
+      end = text.size();
+    }
+    if (end > start) {
+      fields.push_back(text.substr(start, end - start));
+    }
+    start = end + 1;
+  }
+  return fields;
+}
+
 std::vector<uint8_t> make_payload(uint32_t index, uint32_t tag, size_t size)
 {
   std::vector<uint8_t> p(std::max<size_t>(size, 8));
@@ -271,6 +289,11 @@ int role_pub()
   const std::string topic = opt("topic", "/chatter");
   const long count = opt_int("count", 10);  // NOLINT(runtime/int)
   const size_t size = static_cast<size_t>(opt_int("size", 16));
+  // --sizes a,b,c: message i has size sizes[i % n] (instead of --size).
+  std::vector<size_t> sizes;
+  for (const std::string & s : split(opt("sizes"), ',')) {
+    sizes.push_back(static_cast<size_t>(std::strtol(s.c_str(), nullptr, 10)));
+  }
   const uint32_t tag = static_cast<uint32_t>(opt_int("tag", 1));
   auto pub = must(
     Publisher::make(e.node, topic, opt("type", "test_msgs/msg/Bytes"), parse_qos(opt("qos", ""))),
@@ -287,7 +310,9 @@ int role_pub()
   auto t0 = Clock::now();
   long failures = 0;  // NOLINT(runtime/int)
   for (long i = 0; count < 0 || i < count; ++i) {  // NOLINT(runtime/int)
-    std::vector<uint8_t> p = make_payload(static_cast<uint32_t>(i), tag, size);
+    std::vector<uint8_t> p = make_payload(
+      static_cast<uint32_t>(i), tag,
+      sizes.empty() ? size : sizes[static_cast<size_t>(i) % sizes.size()]);
     Status s = pub->publish(p.data(), p.size());
     if (!s.ok()) {
       out("ERROR publish %ld: %s", i, s.message().c_str());
