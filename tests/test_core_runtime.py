@@ -231,4 +231,8 @@ def test_warm_host_boots_the_pthread_pool_ahead(platform):
     assert extra['warming_prestarted'] == 4, why
     # warmPthreadWorkers: 0 -> Emscripten booted its own
     assert extra['none_prestarted'] == 0, why
+    # in a browser the host (and the pthread workers) loaded the glue from
+    # the script the Runtime prefetched; Node.js hosts read the file
+    for name in ('ready', 'warming', 'none'):
+        assert extra[f'{name}_glue_from_memory'] is (platform == 'chromium'), why
     assert 'thread line 49' in _lines(run, 'ready'), why

@@ -388,6 +388,7 @@ SCENARIOS.prestarted_pthreads = async (ctx) => {
       const proc = await start(ctx, name, 'threads', {});
       await exits(ctx, [name]);
       ctx.extra[`${name}_prestarted`] = proc.prestartedPthreadWorkers;
+      ctx.extra[`${name}_glue_from_memory`] = proc.glueFromMemory;
     } finally {
       ctx.rt = main;
     }

@@ -17,7 +17,9 @@ import { StdinPipe } from './stdin_pipe.mjs';
 /**
  * The platform half of a host.
  * @typedef {object} HostPlatform
- * @property {function(string): void} loadGlue run the glue script (URL or path) in global scope
+ * @property {function(string, Blob=): boolean} loadGlue run the glue script (URL or path) in
+ *   global scope, from the prefetched Blob when one is given and the platform can; returns true
+ *   when it ran from the Blob
  * @property {function(string): string} locate the URL or path Emscripten should use for a file
  *   next to the glue (pthread worker script, ...)
  * @property {function(object): void} post post a message to the Runtime
@@ -64,8 +66,9 @@ export function withNamespaceFromEnvironment(args, env) {
  * options); under Node.js it first sets the global `Worker` itself, which
  * the accessor records. Any other construction gets a real Worker.
  * @param {function(): void} load
+ * @param {Object<string, Blob>} [scripts] prefetched scripts the stubs load from memory
  */
-function withPthreadStubs(load) {
+function withPthreadStubs(load, scripts) {
   if (!pthreadPool || pthreadPool.size === 0) {
     load();
     return;
@@ -73,7 +76,7 @@ function withPthreadStubs(load) {
   const pool = pthreadPool;
   let Real = globalThis.Worker;
   function WorkerOrStub(url, options) {
-    const stub = options === undefined ? pool.take(String(url)) : null;
+    const stub = options === undefined ? pool.take(String(url), scripts) : null;
     return stub || new Real(url, options);
   }
   Object.defineProperty(globalThis, 'Worker', {
@@ -220,8 +223,10 @@ export async function startProcess(msg, platform) {
       },
     };
     globalThis.Module = Module;
-    withPthreadStubs(() => platform.loadGlue(msg.url));
-    post({ type: FromHost.STARTED, prestartedPthreadWorkers: pthreadPool ? pthreadPool.taken : 0 });
+    const scripts = msg.scripts || {};
+    let glueFromMemory = false;
+    withPthreadStubs(() => { glueFromMemory = platform.loadGlue(msg.url, scripts[msg.url]) === true; }, scripts);
+    post({ type: FromHost.STARTED, prestartedPthreadWorkers: pthreadPool ? pthreadPool.taken : 0, glueFromMemory });
   } catch (err) {
     exit(1, true, `cannot start ${msg.url}: ${err && err.message ? err.message : err}`);
     platform.close(1);

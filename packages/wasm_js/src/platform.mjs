@@ -113,6 +113,18 @@ export async function resolveUrl(urlOrPath) {
 }
 
 /**
+ * Fetch a script as a Blob (browsers), so that workers can load it from
+ * memory instead of a synchronous network load each.
+ * @param {string} url absolute URL
+ * @returns {Promise<Blob>}
+ */
+export async function fetchScript(url) {
+  const response = await fetch(url);
+  if (!response.ok) throw new Error(`cannot fetch ${url}: HTTP ${response.status}`);
+  return new Blob([await response.arrayBuffer()], { type: 'text/javascript' });
+}
+
+/**
  * Compile a wasm file once (to share between nodes of the same executable).
  * @param {string} url absolute URL of the .wasm file
  * @returns {Promise<WebAssembly.Module>}

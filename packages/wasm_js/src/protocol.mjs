@@ -14,7 +14,11 @@ export const ToHost = Object.freeze({
    * and boot `pthreadWorkers` pthread workers now (a warm, idle host); answered by READY
    */
   PRELOAD: 'preload',
-  /** {type, bus, pid, url, wasmUrl, glueFile, args, env, name, wasmModule, stdin (SharedArrayBuffer of a StdinPipe, or null), files, busModuleUrl, hostModuleUrl} */
+  /**
+   * {type, bus, pid, url, wasmUrl, glueFile, args, env, name, wasmModule, stdin (SharedArrayBuffer
+   * of a StdinPipe, or null), files, scripts (absolute URL -> Blob: the glue and pthread worker
+   * script, prefetched in browsers; may be empty), busModuleUrl, hostModuleUrl}
+   */
   START: 'start',
 });
 
@@ -24,7 +28,10 @@ export const FromHost = Object.freeze({
   READY: 'ready',
   /** {type, stream: 'stdout'|'stderr', text} one line */
   LOG: 'log',
-  /** {type, prestartedPthreadWorkers} the glue is loaded and main() is about to run */
+  /**
+   * {type, prestartedPthreadWorkers, glueFromMemory} the glue is loaded (from a prefetched
+   * Blob, or by URL) and main() is about to run
+   */
   STARTED: 'started',
   /** {type, code, crashed, reason} */
   EXIT: 'exit',

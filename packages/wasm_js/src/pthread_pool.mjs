@@ -18,8 +18,11 @@
  *   host -> stub {colconWasmPreload: busModuleUrl, state: Int32Array(1)}
  *     the stub imports the module, then stores 1 (ready) or 2 (failed) in
  *     state[0] (and, failed and not yet taken, posts {colconWasmError})
- *   host -> stub {colconWasmWorkerScript: url}
- *     the stub loads url (once); its onmessage takes over
+ *   host -> stub {colconWasmWorkerScript: url, scripts}
+ *     the stub loads url (once); its onmessage takes over. `scripts`
+ *     (absolute URL -> Blob, browsers) are the worker script and the glue,
+ *     prefetched by the Runtime: the stub's importScripts() loads those from
+ *     memory (a stub under Node.js reads files and ignores them)
  * A stub is handed out booting or ready; its messages wait in its queue.
  *
  * @module pthread_pool
@@ -102,9 +105,10 @@ export class PthreadPool {
   /**
    * Hand a stub (a ready one first) to Emscripten, told to load its worker script.
    * @param {string} url Emscripten's pthread worker script (URL or path)
+   * @param {Object<string, Blob>} [scripts] prefetched scripts (see the stub protocol)
    * @returns {object|null} the worker, or null when the pool is empty
    */
-  take(url) {
+  take(url, scripts) {
     for (const s of [...this._stubs]) {
       if (Atomics.load(s.state, 0) === FAILED) this._drop(s);
     }
@@ -114,7 +118,7 @@ export class PthreadPool {
     const [stub] = this._stubs.splice(i, 1);
     stub.stop();
     if (stub.busy) stub.busy();
-    stub.worker.postMessage({ colconWasmWorkerScript: url });
+    stub.worker.postMessage({ colconWasmWorkerScript: url, scripts: scripts || {} });
     this.taken++;
     return stub.worker;
   }

@@ -26,6 +26,31 @@ self.onmessage = function(e) {
   if (d && typeof d.colconWasmWorkerScript === 'string') {
     taken = true;
     self.onmessage = null;
+    var scripts = d.scripts || {};
+    if (Object.keys(scripts).length) {
+      // Emscripten's worker script loads the glue with importScripts(): serve
+      // both from the Runtime's prefetched Blobs (see web_host.js importScript;
+      // a blob: load refused by the page's policy falls back to the URL).
+      var load = self.importScripts;
+      self.importScripts = function() {
+        for (var i = 0; i < arguments.length; i++) {
+          var url = String(arguments[i]);
+          var blob = scripts[new URL(url, self.location.href).href];
+          if (blob) {
+            var blobUrl = URL.createObjectURL(blob);
+            try {
+              load.call(self, blobUrl);
+              continue;
+            } catch (e) {
+              if (!e || e.name !== 'NetworkError') throw e;
+            } finally {
+              URL.revokeObjectURL(blobUrl);
+            }
+          }
+          load.call(self, url);
+        }
+      };
+    }
     importScripts(d.colconWasmWorkerScript);
   }
 };
