@@ -12,6 +12,12 @@
 
 /** Samples per latency measurement. */
 const COUNTS = { string: 1000, image: 200 };
+/**
+ * Round trips before measuring, the same for rclcpp and the core: with 50,
+ * V8 was still tiering up inside the measurement (slow samples at the same
+ * round trips run after run; see docs/performance.md on bench/transport).
+ */
+const WARMUP = { string: 2000, image: 200 };
 
 function parseResults(text, into) {
   const at = text.indexOf('RESULT ');
@@ -84,7 +90,7 @@ class Bench {
       const pong = await this.spawn(rt, this.env.probe, [`bench_pong_${kind}`], 'pong');
       await pong.line('READY');
       const ping = await this.spawn(
-        rt, this.env.probe, [`bench_ping_${kind}`, String(COUNTS[kind]), '50'], 'ping');
+        rt, this.env.probe, [`bench_ping_${kind}`, String(COUNTS[kind]), String(WARMUP[kind])], 'ping');
       await ping.wait('p99_us');
       return { p50: ping.results.p50_us, p99: ping.results.p99_us, n: ping.results.count };
     } finally {
@@ -93,12 +99,12 @@ class Bench {
   }
 
   /** The bare core (wasm_cpp, opaque bytes) with the same payload size. */
-  async coreLatency(size, count) {
+  async coreLatency(size, count, warmup) {
     const rt = await this.runtime();
     try {
       const pong = await this.spawn(rt, this.env.core, ['pong', '--size', String(size)], 'core pong');
       const ping = await this.spawn(rt, this.env.core,
-        ['ping', '--size', String(size), '--count', String(count), '--warmup', '50'], 'core ping');
+        ['ping', '--size', String(size), '--count', String(count), '--warmup', String(warmup)], 'core ping');
       await ping.wait('p99_us');
       await pong.proc.exited;
       return { p50: ping.results.p50_us, p99: ping.results.p99_us, n: ping.results.count };
@@ -172,10 +178,10 @@ export async function runAll(env, options = {}) {
   const result = { latency: {}, throughput: {}, start: {} };
   result.latency.string = await b.rclcppLatency('string');
   // the serialized 32-character std_msgs/String is 4 + 4 + 33 bytes
-  result.latency.core_string = await b.coreLatency(41, COUNTS.string);
+  result.latency.core_string = await b.coreLatency(41, COUNTS.string, WARMUP.string);
   result.latency.image = await b.rclcppLatency('image');
   // the serialized 512x512 rgba8 Image is about 1 MiB + 60 bytes
-  result.latency.core_image = await b.coreLatency(1024 * 1024 + 64, COUNTS.image);
+  result.latency.core_image = await b.coreLatency(1024 * 1024 + 64, COUNTS.image, WARMUP.image);
   result.throughput.string = await b.rclcppThroughput(options.quick ? 2000 : 20000);
   const rclcpp = [];
   const core = [];
