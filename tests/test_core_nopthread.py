@@ -35,6 +35,31 @@ def test_no_pthread_delivery_services_and_waits(nopthread, scenario):
         assert (sub['received'], sub['out_of_order']) == ('100000', '0')
 
 
+@pytest.fixture(scope='module')
+def nopthread_browser(nopthread):
+    reason = harness.browser_skip_reason()
+    if reason:
+        pytest.skip(reason)
+    browser = harness.Browser(
+        [('/wasm_js/', nopthread.share), ('/nodes/', nopthread.bin),
+         ('/core/', harness.HERE)], plain=[('/plain/', harness.HERE)])
+    yield browser
+    browser.close()
+
+
+def test_no_pthread_build_runs_in_chromium_without_failed_loads(
+        nopthread_browser):
+    # The Runtime prefetches an executable's scripts; a build without
+    # threads has no .worker.js, and the page must not ask for one.
+    run = nopthread_browser.run('services')
+    assert run['ok'], harness.explain(run)
+    for name, proc in run['processes'].items():
+        assert proc['exit']['code'] in (0, None), (name, harness.explain(run))
+    failed = [line for line in run['console']
+              if 'Failed to load resource' in line or 'pageerror' in line]
+    assert failed == [], harness.explain(run)
+
+
 def test_no_pthread_callbacks_are_unsupported_with_a_reason(nopthread):
     run = harness.run_node(nopthread, 'callbacks')
     r = harness.results(run, 'callbacks')

@@ -129,14 +129,29 @@ var LibraryWasmBus = {
       if (ENVIRONMENT_IS_PTHREAD) {
         // Hold 'loaded' until the main thread sent us the bus and we attached.
         addRunDependency('wasm-bus');
+        // And hold what comes before then: the wasm_js host may post a thread's
+        // 'run' right after 'load' (host_common.mjs), and attaching is async.
+        // They are handled in order, each in a task of its own (as a message
+        // would be, so that what a thread throws reaches the Worker's error
+        // handler), until none is left.
+        var held = [];
         var onmessage = self.onmessage;
+        var replay = function() {
+          var e = held.shift();
+          if (held.length) setTimeout(replay, 0); else held = null;
+          onmessage(e);
+        };
+        var attached = function() {
+          removeRunDependency('wasm-bus');
+          if (held.length) setTimeout(replay, 0); else held = null;
+        };
         self.onmessage = function(e) {
           var d = e && e.data;
           if (d && d['cmd'] === 'wasmBus') {
             if (!d['sab']) {
               // The main thread has no bus: neither do we (contexts fail clearly).
               WasmBus.error = d['error'];
-              removeRunDependency('wasm-bus');
+              attached();
               return;
             }
             WasmBus.moduleUrl = d['moduleUrl'];
@@ -144,9 +159,11 @@ var LibraryWasmBus = {
               WasmBus.client = m.BusClient.attach(d['sab'], d['pid']);
             }).catch(function(err) {
               WasmBus.error = 'wasm_cpp: a thread could not attach to the bus (' + d['moduleUrl'] + '): ' + err;
-            }).then(function() {
-              removeRunDependency('wasm-bus');
-            });
+            }).then(attached);
+            return;
+          }
+          if (held) {
+            held.push(e);
             return;
           }
           return onmessage(e);

@@ -17,9 +17,9 @@ import { StdinPipe } from './stdin_pipe.mjs';
 /**
  * The platform half of a host.
  * @typedef {object} HostPlatform
- * @property {function(string, Blob=): boolean} loadGlue run the glue script (URL or path) in
- *   global scope, from the prefetched Blob when one is given and the platform can; returns true
- *   when it ran from the Blob
+ * @property {function(string, string=): boolean} loadGlue run the glue script (URL or path) in
+ *   global scope, from its prefetched text when one is given and the platform can; returns true
+ *   when it ran from the text
  * @property {function(string): string} locate the URL or path Emscripten should use for a file
  *   next to the glue (pthread worker script, ...)
  * @property {function(object): void} post post a message to the Runtime
@@ -66,7 +66,7 @@ export function withNamespaceFromEnvironment(args, env) {
  * options); under Node.js it first sets the global `Worker` itself, which
  * the accessor records. Any other construction gets a real Worker.
  * @param {function(): void} load
- * @param {Object<string, Blob>} [scripts] prefetched scripts the stubs load from memory
+ * @param {Object<string, string>} [scripts] prefetched script texts the stubs run from memory
  */
 function withPthreadStubs(load, scripts) {
   if (!pthreadPool || pthreadPool.size === 0) {
@@ -87,6 +87,36 @@ function withPthreadStubs(load, scripts) {
   } finally {
     Object.defineProperty(globalThis, 'Worker', { configurable: true, enumerable: false, writable: true, value: Real });
   }
+}
+
+/**
+ * Let main() start before the pre-started pthread workers have loaded the
+ * program, instead of after (Emscripten 3.1.6 holds main() until each pool
+ * worker has answered 'loaded': ~40 ms of glue loads and instantiations on
+ * two cores, in Chromium). Emscripten posts each worker 'load' when the
+ * module is instantiated, and a thread's 'run' only once the worker has
+ * answered; a worker runs its messages in order and handles 'load'
+ * synchronously, so 'run' can follow 'load' at once. That needs no help
+ * from this thread's event loop, which is blocked while main() waits on the
+ * bus, only for a worker that had booted before it was handed to Emscripten
+ * (`readyWorkers`); any other keeps Emscripten's wait.
+ * Call it after the glue has run and before the module is instantiated.
+ * @param {WeakSet<object>} readyWorkers
+ * @returns {boolean} false when the glue has no pthread pool to hook
+ */
+function startMainWhilePthreadWorkersLoad(readyWorkers) {
+  const PThread = globalThis.PThread;
+  if (!PThread || typeof PThread.loadWasmModuleToWorker !== 'function') return false;
+  const load = PThread.loadWasmModuleToWorker;
+  PThread.loadWasmModuleToWorker = function loadWithoutWaiting(worker, onFinishedLoading) {
+    if (!readyWorkers.has(worker)) return load.call(this, worker, onFinishedLoading);
+    load.call(this, worker, undefined);
+    // Emscripten's spawnThread posts 'run' at once to a loaded worker.
+    worker.loaded = true;
+    if (onFinishedLoading) onFinishedLoading(worker);
+    return undefined;
+  };
+  return true;
 }
 
 /**
@@ -226,6 +256,7 @@ export async function startProcess(msg, platform) {
     const scripts = msg.scripts || {};
     let glueFromMemory = false;
     withPthreadStubs(() => { glueFromMemory = platform.loadGlue(msg.url, scripts[msg.url]) === true; }, scripts);
+    if (pthreadPool && pthreadPool.taken) startMainWhilePthreadWorkersLoad(pthreadPool.readyWorkers);
     post({ type: FromHost.STARTED, prestartedPthreadWorkers: pthreadPool ? pthreadPool.taken : 0, glueFromMemory });
   } catch (err) {
     exit(1, true, `cannot start ${msg.url}: ${err && err.message ? err.message : err}`);

@@ -113,15 +113,16 @@ export async function resolveUrl(urlOrPath) {
 }
 
 /**
- * Fetch a script as a Blob (browsers), so that workers can load it from
- * memory instead of a synchronous network load each.
+ * Fetch a classic script's text (browsers), so that workers can run it from
+ * memory instead of a synchronous network load each. A `sourceURL` comment
+ * is appended: stack traces and devtools then name the file.
  * @param {string} url absolute URL
- * @returns {Promise<Blob>}
+ * @returns {Promise<string>}
  */
 export async function fetchScript(url) {
   const response = await fetch(url);
   if (!response.ok) throw new Error(`cannot fetch ${url}: HTTP ${response.status}`);
-  return new Blob([await response.arrayBuffer()], { type: 'text/javascript' });
+  return `${await response.text()}\n//# sourceURL=${url}\n`;
 }
 
 /**

@@ -16,7 +16,7 @@ export const ToHost = Object.freeze({
   PRELOAD: 'preload',
   /**
    * {type, bus, pid, url, wasmUrl, glueFile, args, env, name, wasmModule, stdin (SharedArrayBuffer
-   * of a StdinPipe, or null), files, scripts (absolute URL -> Blob: the glue and pthread worker
+   * of a StdinPipe, or null), files, scripts (absolute URL -> text: the glue and pthread worker
    * script, prefetched in browsers; may be empty), busModuleUrl, hostModuleUrl}
    */
   START: 'start',
@@ -29,8 +29,8 @@ export const FromHost = Object.freeze({
   /** {type, stream: 'stdout'|'stderr', text} one line */
   LOG: 'log',
   /**
-   * {type, prestartedPthreadWorkers, glueFromMemory} the glue is loaded (from a prefetched
-   * Blob, or by URL) and main() is about to run
+   * {type, prestartedPthreadWorkers, glueFromMemory} the glue is loaded (from its prefetched
+   * text, or by URL) and main() is about to run
    */
   STARTED: 'started',
   /** {type, code, crashed, reason} */

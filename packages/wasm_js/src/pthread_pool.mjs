@@ -20,8 +20,8 @@
  *     state[0] (and, failed and not yet taken, posts {colconWasmError})
  *   host -> stub {colconWasmWorkerScript: url, scripts}
  *     the stub loads url (once); its onmessage takes over. `scripts`
- *     (absolute URL -> Blob, browsers) are the worker script and the glue,
- *     prefetched by the Runtime: the stub's importScripts() loads those from
+ *     (absolute URL -> text, browsers) are the worker script and the glue,
+ *     prefetched by the Runtime: the stub's importScripts() runs those from
  *     memory (a stub under Node.js reads files and ignores them)
  * A stub is handed out booting or ready; its messages wait in its queue.
  *
@@ -53,6 +53,12 @@ export class PthreadPool {
     this._stubs = [];
     /** Stubs handed to Emscripten so far. */
     this.taken = 0;
+    /**
+     * Workers of stubs that were ready when taken: booted, so they load and
+     * run what they are sent with no help from the host's event loop.
+     * @type {WeakSet<object>}
+     */
+    this.readyWorkers = new WeakSet();
   }
 
   /** Number of untaken stubs (booting or ready). */
@@ -105,7 +111,7 @@ export class PthreadPool {
   /**
    * Hand a stub (a ready one first) to Emscripten, told to load its worker script.
    * @param {string} url Emscripten's pthread worker script (URL or path)
-   * @param {Object<string, Blob>} [scripts] prefetched scripts (see the stub protocol)
+   * @param {Object<string, string>} [scripts] prefetched script texts (see the stub protocol)
    * @returns {object|null} the worker, or null when the pool is empty
    */
   take(url, scripts) {
@@ -116,6 +122,7 @@ export class PthreadPool {
     if (i < 0) i = this._stubs.length ? 0 : -1;
     if (i < 0) return null;
     const [stub] = this._stubs.splice(i, 1);
+    if (Atomics.load(stub.state, 0) === READY) this.readyWorkers.add(stub.worker);
     stub.stop();
     if (stub.busy) stub.busy();
     stub.worker.postMessage({ colconWasmWorkerScript: url, scripts: scripts || {} });

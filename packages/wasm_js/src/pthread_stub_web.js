@@ -6,6 +6,8 @@
 // script's onmessage takes over.
 'use strict';
 
+importScripts('import_script.js');
+
 // Taken before the import failed: Emscripten's script owns the messages
 // now, and an error message would confuse it.
 var taken = false;
@@ -28,26 +30,13 @@ self.onmessage = function(e) {
     self.onmessage = null;
     var scripts = d.scripts || {};
     if (Object.keys(scripts).length) {
-      // Emscripten's worker script loads the glue with importScripts(): serve
-      // both from the Runtime's prefetched Blobs (see web_host.js importScript;
-      // a blob: load refused by the page's policy falls back to the URL).
+      // Emscripten's worker script loads the glue with importScripts(): run
+      // both from the Runtime's prefetched text (import_script.js).
       var load = self.importScripts;
       self.importScripts = function() {
         for (var i = 0; i < arguments.length; i++) {
           var url = String(arguments[i]);
-          var blob = scripts[new URL(url, self.location.href).href];
-          if (blob) {
-            var blobUrl = URL.createObjectURL(blob);
-            try {
-              load.call(self, blobUrl);
-              continue;
-            } catch (e) {
-              if (!e || e.name !== 'NetworkError') throw e;
-            } finally {
-              URL.revokeObjectURL(blobUrl);
-            }
-          }
-          load.call(self, url);
+          colconWasmImportScript(url, scripts[new URL(url, self.location.href).href], load);
         }
       };
     }

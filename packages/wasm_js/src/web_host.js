@@ -6,6 +6,8 @@
 // one START; see host_common.mjs.
 'use strict';
 
+importScripts('import_script.js');
+
 var hostModule = null;
 
 function load(url) {
@@ -33,26 +35,6 @@ function pthreadStub(url) {
   };
 }
 
-// importScripts(url), from `blob` when there is one: a load from memory
-// instead of a synchronous network load. A page whose Content-Security-Policy
-// refuses blob: scripts makes that load fail before anything ran (a
-// NetworkError); then the URL is loaded. Returns true when the Blob ran.
-function importScript(url, blob) {
-  if (blob) {
-    var blobUrl = URL.createObjectURL(blob);
-    try {
-      importScripts(blobUrl);
-      return true;
-    } catch (e) {
-      if (!e || e.name !== 'NetworkError') throw e;
-    } finally {
-      URL.revokeObjectURL(blobUrl);
-    }
-  }
-  importScripts(url);
-  return false;
-}
-
 function fail(reason) {
   self.postMessage({type: 'exit', code: 1, crashed: true, reason: reason});
   self.close();
@@ -77,7 +59,7 @@ self.onmessage = function(e) {
   self.onmessage = null;
   load(msg.hostModuleUrl).then(function(host) {
     return host.startProcess(msg, {
-      loadGlue: function(url, blob) { return importScript(url, blob); },
+      loadGlue: function(url, text) { return colconWasmImportScript(url, text, importScripts); },
       locate: function(path) { return new URL(path, msg.url).href; },
       post: function(m) { self.postMessage(m); },
       close: function() { setTimeout(function() { self.close(); }, 0); },
