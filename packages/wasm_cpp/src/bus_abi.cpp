@@ -149,7 +149,7 @@ Allocator reusing_allocator(const Message & message)
 {
   Allocator a = malloc_allocator();
   a.buffer = message.data.get();
-  a.capacity = message.data ? message.capacity : 0;
+  a.capacity = message.capacity;  // take() ignores it when there is no buffer
   return a;
 }
 

@@ -123,7 +123,7 @@ rmw_ret_t SubscriptionData::take_serialized(
   allocator.deallocate = [](void *, void *) {};
   allocator.state = &target;
   allocator.buffer = message->buffer;
-  allocator.capacity = message->buffer == nullptr ? 0 : message->buffer_capacity;
+  allocator.capacity = message->buffer_capacity;  // take() ignores it when there is no buffer
   uint8_t * data = nullptr;
   size_t size = 0;
   wasm_cpp::MessageInfo info;
