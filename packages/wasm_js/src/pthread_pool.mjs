@@ -3,7 +3,7 @@
 /**
  * Pre-started pthread workers for a warm host.
  *
- * An Emscripten pthread program does not run main() before its whole pool
+ * Emscripten does not run a pthread program's main() before its whole pool
  * (`-sPTHREAD_POOL_SIZE`, 4 by default) has booted a worker each, loaded the
  * glue into it and instantiated the module: ~150 ms on two cores, most of it
  * booting workers (a Node.js worker thread takes ~30 ms to boot). A warm host
