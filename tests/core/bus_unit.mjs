@@ -165,6 +165,36 @@ const CHECKS = {
     assert.equal(got[32 * 4093], payload[32 * 4093]);
   },
 
+  /**
+   * Large copies (word copies when both ends are word-aligned, byte copies
+   * otherwise) keep every byte, the tail of an odd length included, and
+   * write nothing around the destination.
+   */
+  async large_copies_keep_every_byte() {
+    const { clients: [a, b] } = world(2);
+    const sub = endpoint(b, KIND_SUBSCRIPTION, b.createNode({ name: 'sink' }).index, '/copy', { history: 'keep_all' });
+    const pub = endpoint(a, KIND_PUBLISHER, a.createNode({ name: 'src' }).index, '/copy', { history: 'keep_all' });
+    // Wasm heaps of pthread builds are SharedArrayBuffers, like the bus.
+    const heap = new Uint8Array(new SharedArrayBuffer(1 << 18));
+    for (let i = 0; i < heap.length; i++) heap[i] = (i * 7 + (i >> 8)) & 255;
+    const dst = new Uint8Array(new SharedArrayBuffer(1 << 18));
+    for (const len of [513, 514, 515, 516, 4097, 65536, 65539]) {
+      for (const srcOff of [0, 1, 2, 3, 8]) {
+        for (const dstOff of [0, 3, 16]) {
+          a.publishFrom(pub, heap, srcOff + 64, len);
+          dst.fill(0xee);
+          const n = b.takeBegin(sub, TakeMode.MESSAGE);
+          assert.equal(n, len);
+          assert.ok(b.takeCopy(dst, dstOff + 64), 'taken');
+          const where = `len ${len}, source offset ${srcOff}, destination offset ${dstOff}`;
+          assert.deepEqual(dst.subarray(dstOff + 64, dstOff + 64 + len), heap.subarray(srcOff + 64, srcOff + 64 + len), where);
+          assert.equal(dst[dstOff + 63], 0xee, `byte before the copy written: ${where}`);
+          assert.equal(dst[dstOff + 64 + len], 0xee, `byte after the copy written: ${where}`);
+        }
+      }
+    }
+  },
+
   /** A freed block is not reused at once (a reader may still be copying from it). */
   async freed_blocks_wait_before_reuse() {
     const { bus, runtime } = world(0);
