@@ -10,6 +10,9 @@
  * ping waits for the echo; one-way latency = round trip / 2.
  */
 
+// Served at /transport_files/ in Chromium (bench/rclcpp's routes).
+import { measureNodeStart } from '../transport_files/node_start.mjs';
+
 /** Samples per latency measurement. */
 const COUNTS = { string: 1000, image: 200 };
 /**
@@ -138,21 +141,7 @@ class Bench {
   async start(url, args, type) {
     const rt = await this.runtime();
     try {
-      const tools = await rt.tools();
-      let resolveFirst;
-      const first = new Promise((r) => { resolveFirst = r; });
-      const sub = await tools.subscribe({ topic: '/bench/hello', type },
-        (batch) => resolveFirst(batch[0].info.sourceTime));
-      const wasmUrl = new URL(url.replace(/\.js$/, '.wasm'),
-        typeof location === 'undefined' ? 'file:///' : location.href).href;
-      await rt.compiledModule(wasmUrl);
-      await rt.warm();
-      const t0 = performance.timeOrigin + performance.now();
-      const proc = await rt.spawn({ url, args, name: 'hello' });
-      const sourceTime = await first;
-      await proc.exited;
-      await sub.close();
-      return sourceTime - t0;
+      return await measureNodeStart(rt, { url, args, type });
     } finally {
       await rt.close();
     }

@@ -7,6 +7,8 @@
  * 10-ms postMessage design, in one run.
  */
 
+import { measureNodeStart } from './node_start.mjs';
+
 const SIZES = [64, 1024, 64 * 1024, 1024 * 1024];
 
 /** Latency samples per size (ours and raw ring; the poll design takes ~10 ms each). */
@@ -148,19 +150,7 @@ class Bench {
   async oursStart(mode, exe = this.env.exe) {
     const rt = await this.runtime(mode === 'warm' ? 1 : 0);
     try {
-      const tools = await rt.tools();
-      let resolveFirst;
-      const first = new Promise((r) => { resolveFirst = r; });
-      const sub = await tools.subscribe({ topic: '/bench/hello', type: 'bench/msg/Bytes' }, (batch) => resolveFirst(batch[0].info.sourceTime));
-      const wasmUrl = new URL(exe.replace(/\.js$/, '.wasm'), typeof location === 'undefined' ? 'file:///' : location.href).href;
-      if (mode !== 'cold') await rt.compiledModule(wasmUrl);
-      await rt.warm();
-      const t0 = performance.timeOrigin + performance.now();
-      const proc = await rt.spawn({ url: exe, args: ['hello'], name: 'hello', shareModule: mode !== 'cold' });
-      const sourceTime = await first;
-      await proc.exited;
-      await sub.close();
-      return sourceTime - t0;
+      return await measureNodeStart(rt, { url: exe, args: ['hello'], type: 'bench/msg/Bytes', shareModule: mode !== 'cold' });
     } finally {
       await rt.close();
     }
