@@ -39,6 +39,12 @@ def test_crashing_node_reported_with_reason_others_continue(platform):
 
 
 @pytest.mark.parametrize('platform', PLATFORMS)
+def test_node_whose_main_traps_is_reported_crashed(platform):
+    # A trap has no abort hook: only the error it throws out of main() tells.
+    harness.assert_trap_reported(harness.run(platform, 'trap'))
+
+
+@pytest.mark.parametrize('platform', PLATFORMS)
 def test_keep_all_writer_blocked_by_a_reader_that_dies_goes_on(platform):
     run = harness.run(platform, 'blocked_writer')
     why = harness.explain(run)

@@ -60,6 +60,13 @@ def test_no_pthread_build_runs_in_chromium_without_failed_loads(
     assert failed == [], harness.explain(run)
 
 
+def test_no_pthread_node_whose_main_traps_is_reported_crashed(
+        nopthread, nopthread_browser):
+    # Without threads main() runs straight from the module's instantiation.
+    harness.assert_trap_reported(harness.run_node(nopthread, 'trap'))
+    harness.assert_trap_reported(nopthread_browser.run('trap'))
+
+
 def test_no_pthread_callbacks_are_unsupported_with_a_reason(nopthread):
     run = harness.run_node(nopthread, 'callbacks')
     r = harness.results(run, 'callbacks')

@@ -231,6 +231,16 @@ def exit_of(run, name):
     return run['processes'][name]['exit']
 
 
+def assert_trap_reported(run):
+    """Check a 'trap' scenario run: the victim crashed, the others went on."""
+    why = explain(run)
+    victim = exit_of(run, 'victim')
+    assert victim['crashed'] and victim['code'] != 0, why
+    assert 'unreachable' in victim['reason'], why
+    assert run['extra']['graph_after'] == ['other', 'survivor'], why
+    assert int(results(run, 'survivor')['continued']) >= 2000, why
+
+
 def _dump(run):
     out = []
     for name, proc in run.get('processes', {}).items():

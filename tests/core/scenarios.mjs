@@ -225,6 +225,18 @@ const SCENARIOS = {
     await ctx.procs.other.proc.stop();
   },
 
+  /** A node's main() traps (an invalid instruction): reported crashed, the other goes on. */
+  async trap(ctx) {
+    await start(ctx, 'survivor', 'survivor', { publishers: 2, after: 2000 });
+    await start(ctx, 'other', 'pub', { topic: '/stream', count: -1, tag: 2, 'period-us': 100, name: 'other' });
+    await start(ctx, 'victim', 'pub', { topic: '/stream', count: -1, tag: 1, 'period-us': 100, 'trap-after': 3000, name: 'victim' });
+    await ctx.procs.victim.proc.exited;
+    ctx.extra.graph_after = ctx.rt.graph().nodes.map((n) => n.name).sort();
+    await result(ctx, 'survivor', 'continued');
+    await exits(ctx, ['survivor']);
+    await ctx.procs.other.proc.stop();
+  },
+
   /** A KEEP_ALL publisher blocked on a reader that dies goes on. */
   async blocked_writer(ctx) {
     await start(ctx, 'reader', 'sub', { qos: 'keep_all', count: 1, 'wait-signal': '/test/never', topic: '/blocked' });

@@ -95,10 +95,11 @@ function withPthreadStubs(load, scripts) {
  * worker has answered 'loaded': ~40 ms of glue loads and instantiations on
  * two cores, in Chromium). Emscripten posts each worker 'load' when the
  * module is instantiated, and a thread's 'run' only once the worker has
- * answered; a worker runs its messages in order and handles 'load'
- * synchronously, so 'run' can follow 'load' at once. That needs no help
- * from this thread's event loop, which is blocked while main() waits on the
- * bus, only for a worker that had booted before it was handed to Emscripten
+ * answered; a worker runs its messages in order and handles 'load' at once
+ * (library_wasm_bus.js holds what follows until the worker has attached to
+ * the bus), so 'run' can follow 'load' at once. That needs no help from
+ * this thread's event loop, which is blocked while main() waits on the bus,
+ * only for a worker that had booted before it was handed to Emscripten
  * (`readyWorkers`); any other keeps Emscripten's wait.
  * Call it after the glue has run and before the module is instantiated.
  * @param {WeakSet<object>} readyWorkers
@@ -117,6 +118,26 @@ function startMainWhilePthreadWorkersLoad(readyWorkers) {
     return undefined;
   };
   return true;
+}
+
+/**
+ * Run `fn` (Emscripten's receiveInstance, which runs main() when nothing else
+ * holds it) from a promise reaction, rethrowing what it throws in a task of
+ * its own. Thrown in the reaction, a crash in main() (a wasm trap: "RuntimeError:
+ * unreachable") would only reject a promise nobody holds: a browser reports
+ * that to no one, and the process would hang instead of being reported
+ * crashed. Rethrown in a task, it is an uncaught error, which the Runtime
+ * hears as the worker's error event (Node.js: its 'error').
+ * @param {function(): void} fn
+ */
+function receiveOutsidePromise(fn) {
+  try {
+    fn();
+  } catch (e) {
+    setTimeout(() => {
+      throw e;
+    }, 0);
+  }
 }
 
 /**
@@ -227,7 +248,7 @@ export async function startProcess(msg, platform) {
       mainScriptUrlOrBlob: platform.locate(msg.glueFile),
       instantiateWasm: (imports, receive) => {
         WebAssembly.instantiate(module, imports).then(
-          (instance) => receive(instance, module),
+          (instance) => receiveOutsidePromise(() => receive(instance, module)),
           (err) => exit(1, true, `cannot instantiate ${msg.wasmUrl}: ${err && err.message}`));
         return {};
       },

@@ -324,6 +324,11 @@ int role_pub()
       out("RESULT aborting_after=%ld", i);
       std::abort();
     }
+    if (opt_int("trap-after", -1) == i) {
+      // A wasm trap ("unreachable"): no abort hook runs, only the error it throws.
+      out("RESULT trapping_after=%ld", i);
+      __builtin_trap();
+    }
     if (i == opt_int("progress-at", -1)) {
       out("RESULT progress=%ld", i);
     }
