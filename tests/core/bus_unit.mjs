@@ -166,9 +166,9 @@ const CHECKS = {
   },
 
   /**
-   * Large copies (word copies when both ends are word-aligned, byte copies
-   * otherwise) keep every byte, the tail of an odd length included, and
-   * write nothing around the destination.
+   * Copies above the small-copy loop's 512 bytes keep every byte at any
+   * alignment, the tail of an odd length included, and write nothing around
+   * the destination.
    */
   async large_copies_keep_every_byte() {
     const { clients: [a, b] } = world(2);
