@@ -83,6 +83,22 @@ async function exits(ctx, names, timeoutMs = 60000) {
   }
 }
 
+/**
+ * Two publishers feed a survivor; the victim fails after 3000 messages by
+ * core_node's `failOption` (abort-after, trap-after). Records the graph once
+ * the victim has exited, then waits for the survivor to go on.
+ */
+async function victimFailsMidStream(ctx, failOption) {
+  await start(ctx, 'survivor', 'survivor', { publishers: 2, after: 2000 });
+  await start(ctx, 'other', 'pub', { topic: '/stream', count: -1, tag: 2, 'period-us': 100, name: 'other' });
+  await start(ctx, 'victim', 'pub', { topic: '/stream', count: -1, tag: 1, 'period-us': 100, [failOption]: 3000, name: 'victim' });
+  await ctx.procs.victim.proc.exited;
+  ctx.extra.graph_after = ctx.rt.graph().nodes.map((n) => n.name).sort();
+  await result(ctx, 'survivor', 'continued');
+  await exits(ctx, ['survivor']);
+  await ctx.procs.other.proc.stop();
+}
+
 /** Resolve when pred(rt.graph()) holds (woken by graph changes, no polling). */
 function waitGraph(rt, pred, timeoutMs = 20000) {
   if (pred(rt.graph())) return Promise.resolve();
@@ -215,26 +231,12 @@ const SCENARIOS = {
 
   /** A node crashes (abort) mid-stream: reported with a reason, the others go on. */
   async crash(ctx) {
-    await start(ctx, 'survivor', 'survivor', { publishers: 2, after: 2000 });
-    await start(ctx, 'other', 'pub', { topic: '/stream', count: -1, tag: 2, 'period-us': 100, name: 'other' });
-    await start(ctx, 'victim', 'pub', { topic: '/stream', count: -1, tag: 1, 'period-us': 100, 'abort-after': 3000, name: 'victim' });
-    await ctx.procs.victim.proc.exited;
-    ctx.extra.graph_after = ctx.rt.graph().nodes.map((n) => n.name).sort();
-    await result(ctx, 'survivor', 'continued');
-    await exits(ctx, ['survivor']);
-    await ctx.procs.other.proc.stop();
+    await victimFailsMidStream(ctx, 'abort-after');
   },
 
   /** A node's main() traps (an invalid instruction): reported crashed, the other goes on. */
   async trap(ctx) {
-    await start(ctx, 'survivor', 'survivor', { publishers: 2, after: 2000 });
-    await start(ctx, 'other', 'pub', { topic: '/stream', count: -1, tag: 2, 'period-us': 100, name: 'other' });
-    await start(ctx, 'victim', 'pub', { topic: '/stream', count: -1, tag: 1, 'period-us': 100, 'trap-after': 3000, name: 'victim' });
-    await ctx.procs.victim.proc.exited;
-    ctx.extra.graph_after = ctx.rt.graph().nodes.map((n) => n.name).sort();
-    await result(ctx, 'survivor', 'continued');
-    await exits(ctx, ['survivor']);
-    await ctx.procs.other.proc.stop();
+    await victimFailsMidStream(ctx, 'trap-after');
   },
 
   /** A KEEP_ALL publisher blocked on a reader that dies goes on. */
