@@ -221,18 +221,49 @@ def test_warm_host_boots_the_pthread_pool_ahead(platform):
     run = harness.run(platform, 'prestarted_pthreads')
     why = harness.explain(run)
     extra = run['extra']
-    for name in ('ready', 'warming', 'none'):
+    for name in ('ready', 'settled', 'warming', 'none'):
         # the program's thread ran and woke main() through the bus
         assert harness.results(run, name)['guard_ready'] == '1', why
         assert harness.exit_of(run, name)['code'] == 0, why
     # the toolchain's default pool is 4 workers; all came from the warm host,
     # also when spawn() took the host before it had finished warming up
     assert extra['ready_prestarted'] == 4, why
+    # 'settled' first waited 300 ms on the bus: that was its settling (its
+    # host thread is blocked until the program exits, so only the wait can
+    # have told), and the pool then loaded the program before its thread
+    # started; the NodeProcess says when, after the glue was loaded
+    assert extra['settled_prestarted'] == 4, why
+    assert extra['settled_settled_ms'] is not None, why
+    assert extra['settled_started_ms'] <= extra['settled_settled_ms'], why
     assert extra['warming_prestarted'] == 4, why
     # warmPthreadWorkers: 0 -> Emscripten booted its own
     assert extra['none_prestarted'] == 0, why
     # in a browser the host (and the pthread workers) loaded the glue from
     # the script the Runtime prefetched; Node.js hosts read the file
-    for name in ('ready', 'warming', 'none'):
+    for name in ('ready', 'settled', 'warming', 'none'):
         assert extra[f'{name}_glue_from_memory'] is (platform == 'chromium'), why
+    assert 'thread line 49' in _lines(run, 'ready'), why
+
+
+def test_page_whose_policy_refuses_eval_loads_the_scripts_by_url():
+    """
+    Load the scripts by URL where the page's policy refuses eval.
+
+    A Content-Security-Policy without 'unsafe-eval' refuses the indirect eval
+    that runs the prefetched glue: the host and the pthread workers load the
+    glue and Emscripten's worker script by URL instead, and work the same.
+    """
+    reason = harness.browser_skip_reason()
+    if reason:
+        pytest.skip(reason)
+    run = harness.get_browser().run('prestarted_pthreads',
+                                    wasm_js='/no-eval/wasm_js/')
+    why = harness.explain(run)
+    extra = run['extra']
+    for name in ('ready', 'settled', 'warming', 'none'):
+        # the thread ran in a worker that loaded the program by URL
+        assert harness.results(run, name)['guard_ready'] == '1', why
+        assert harness.exit_of(run, name)['code'] == 0, why
+        assert extra[f'{name}_glue_from_memory'] is False, why
+    assert extra['ready_prestarted'] == 4, why
     assert 'thread line 49' in _lines(run, 'ready'), why

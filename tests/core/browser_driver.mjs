@@ -2,13 +2,14 @@
 
 /**
  * Headless Chromium for the core tests and bench/transport: serves folders
- * (with COOP/COEP, or without for --plain routes), then answers JSON-line
- * commands on stdin:
+ * (with COOP/COEP, or without for --plain routes; --no-eval routes add a
+ * Content-Security-Policy that refuses eval to the documents and workers
+ * they serve), then answers JSON-line commands on stdin:
  *
  *   {"id": 1, "cmd": "evaluate", "url": "/core/page.html", "expr": "runScenario('x')"}
  *       -> {"id": 1, "result": {"value": ..., "status": ..., "isolated": ..., "console": [...]}}
  *
- *   node browser_driver.mjs --route /prefix/=DIR... [--plain /prefix/=DIR]...
+ *   node browser_driver.mjs --route /prefix/=DIR... [--plain|--no-eval /prefix/=DIR]...
  *
  * Each command opens a fresh page, waits for `window.pageReady`, evaluates
  * the expression (awaiting a promise) and closes the page. playwright-core
@@ -32,15 +33,18 @@ const TYPES = {
   '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript',
   '.wasm': 'application/wasm', '.json': 'application/json',
 };
+/** A policy that allows scripts from the server and wasm, but no eval. */
+const NO_EVAL_POLICY = "script-src 'self' 'wasm-unsafe-eval'";
+const ROUTE_KINDS = ['--route', '--plain', '--no-eval'];
 const ROUTES = [];
 const argv = process.argv.slice(2);
 for (let i = 0; i < argv.length; i += 2) {
   const [prefix, dir] = (argv[i + 1] || '').split('=');
-  if ((argv[i] !== '--route' && argv[i] !== '--plain') || !prefix || !dir) {
-    process.stderr.write('usage: node browser_driver.mjs --route /prefix/=DIR... [--plain /prefix/=DIR]...\n');
+  if (!ROUTE_KINDS.includes(argv[i]) || !prefix || !dir) {
+    process.stderr.write('usage: node browser_driver.mjs --route /prefix/=DIR... [--plain|--no-eval /prefix/=DIR]...\n');
     process.exit(2);
   }
-  ROUTES.push([prefix, path.resolve(dir), argv[i] === '--route']);
+  ROUTES.push([prefix, path.resolve(dir), argv[i] !== '--plain', argv[i] === '--no-eval']);
 }
 
 const server = http.createServer((req, res) => {
@@ -54,7 +58,7 @@ const server = http.createServer((req, res) => {
     res.writeHead(404).end();
     return;
   }
-  const [prefix, dir, isolated] = route;
+  const [prefix, dir, isolated, noEval] = route;
   const file = path.resolve(dir, decodeURIComponent(url.pathname.slice(prefix.length)));
   if (!file.startsWith(path.resolve(dir)) || !fs.existsSync(file) || !fs.statSync(file).isFile()) {
     res.writeHead(404).end();
@@ -65,6 +69,7 @@ const server = http.createServer((req, res) => {
     headers['Cross-Origin-Opener-Policy'] = 'same-origin';
     headers['Cross-Origin-Embedder-Policy'] = 'require-corp';
   }
+  if (noEval) headers['Content-Security-Policy'] = NO_EVAL_POLICY;
   res.writeHead(200, headers);
   fs.createReadStream(file).pipe(res);
 });

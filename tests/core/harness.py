@@ -125,7 +125,8 @@ def get_browser():
         core = get_build()
         _BROWSER = Browser(
             [('/wasm_js/', core.share), ('/nodes/', core.bin),
-             ('/core/', HERE)], plain=[('/plain/', HERE)])
+             ('/core/', HERE)], plain=[('/plain/', HERE)],
+            no_eval=[('/no-eval/wasm_js/', core.share)])
         atexit.register(_BROWSER.close)
     return _BROWSER
 
@@ -157,13 +158,19 @@ def run_node(core, scenario, timeout=240):
 class Browser:
     """One headless Chromium (via browser_driver.mjs) for a test session."""
 
-    def __init__(self, routes, plain=(), log=False):
-        """Start the driver serving (prefix, folder) routes (log: page console to stderr)."""
+    def __init__(self, routes, plain=(), no_eval=(), log=False):
+        """
+        Start the driver serving (prefix, folder) routes.
+
+        `plain` routes are served without cross-origin isolation, `no_eval`
+        ones with a Content-Security-Policy that refuses eval (to the
+        workers whose scripts they serve); log: page console to stderr.
+        """
         args = []
-        for prefix, folder in routes:
-            args += ['--route', f'{prefix}={folder}']
-        for prefix, folder in plain:
-            args += ['--plain', f'{prefix}={folder}']
+        for kind, pairs in (('--route', routes), ('--plain', plain),
+                            ('--no-eval', no_eval)):
+            for prefix, folder in pairs:
+                args += [kind, f'{prefix}={folder}']
         self.process = subprocess.Popen(
             ['node', str(HERE / 'browser_driver.mjs')] + args,
             stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True,
@@ -186,9 +193,17 @@ class Browser:
         assert 'error' not in reply, reply['error']
         return reply['result']
 
-    def run(self, scenario):
-        """Run one core scenario in a fresh page; return its result dict."""
-        reply = self.evaluate('/core/page.html',
+    def run(self, scenario, wasm_js=None):
+        """
+        Run one core scenario in a fresh page; return its result dict.
+
+        wasm_js: the URL prefix to load the runtime from (its workers come
+        from there too), instead of /wasm_js/.
+        """
+        page = '/core/page.html'
+        if wasm_js:
+            page += '?wasm_js=' + wasm_js
+        reply = self.evaluate(page,
                               f'window.runScenario({json.dumps(scenario)})')
         assert reply['status'] == 'ready', reply
         return dict(reply['value'], console=reply['console'])

@@ -193,6 +193,8 @@ export class BusClient {
      * @type {?function(): void}
      */
     this.service = null;
+    /** Called once, before this thread first sleeps on the bus (see beforeFirstSleep). */
+    this._beforeSleep = null;
   }
 
   /** The bus' largest message in bytes. */
@@ -542,6 +544,7 @@ export class BusClient {
             `${op} on '${this.endpointName(ep)}' timed out after ${timeoutMs} ms: the ${KIND_NAMES[i32[rb + E.KIND]]} of node '${rname}' has not taken its oldest pending message and the writer's history of ${slots} messages is full (RELIABLE KEEP_ALL never drops); the message was not sent`);
         }
         // Readers ring only every eighth of the ring (_ringWaitingWriter): look again meanwhile.
+        if (this._beforeSleep !== null) this._firstSleep();
         Atomics.wait(i32, this.bellIndex, bell, Math.min(deadline - t, ACK_RECHECK_MS));
         this._refresh();
         w = this._writerInfo(ep);
@@ -631,6 +634,7 @@ export class BusClient {
         if (!pending) return true;
         const t = now();
         if (t >= deadline) return false;
+        if (this._beforeSleep !== null) this._firstSleep();
         Atomics.wait(i32, this.bellIndex, bell, Math.min(deadline - t, ACK_RECHECK_MS));
       }
     } finally {
@@ -1105,7 +1109,24 @@ export class BusClient {
    * @param {number} ms at most this long (Infinity: no limit)
    */
   sleep(bell, ms) {
+    if (this._beforeSleep !== null) this._firstSleep();
     Atomics.wait(this.bus.i32, this.bellIndex, bell, ms);
+  }
+
+  /**
+   * Call `fn` once, just before this thread first sleeps on the bus (a wait,
+   * a blocked publish, a wait for acknowledgements): the host's sign that
+   * main() has started and now waits for work.
+   * @param {function(): void} fn
+   */
+  beforeFirstSleep(fn) {
+    this._beforeSleep = fn;
+  }
+
+  _firstSleep() {
+    const fn = this._beforeSleep;
+    this._beforeSleep = null;
+    fn();
   }
 
   /** Wake every wait of this process (guard condition triggers, listener changes). */

@@ -91,33 +91,75 @@ function withPthreadStubs(load, scripts) {
 
 /**
  * Let main() start before the pre-started pthread workers have loaded the
- * program, instead of after (Emscripten 3.1.6 holds main() until each pool
- * worker has answered 'loaded': ~40 ms of glue loads and instantiations on
- * two cores, in Chromium). Emscripten posts each worker 'load' when the
- * module is instantiated, and a thread's 'run' only once the worker has
- * answered; a worker runs its messages in order and handles 'load' at once
- * (library_wasm_bus.js holds what follows until the worker has attached to
- * the bus), so 'run' can follow 'load' at once. That needs no help from
- * this thread's event loop, which is blocked while main() waits on the bus,
- * only for a worker that had booted before it was handed to Emscripten
- * (`readyWorkers`); any other keeps Emscripten's wait.
+ * program, and keep them from loading while it starts. Emscripten 3.1.6
+ * posts each pool worker 'load' once the module is instantiated and holds
+ * main() until every one has answered: on two cores, four glue loads and
+ * instantiations then compete with main() for the CPU (~10 ms later first
+ * publish in Chromium). Here a worker that had booted before it was handed
+ * to Emscripten (`readyWorkers`) counts as loaded at once, and gets its
+ * 'load' only when Emscripten first posts it something else (a thread's
+ * 'run', which follows the 'load') or when the program has settled (see
+ * {@link settleOnce}), whichever comes first. A worker runs its messages in
+ * order and handles 'load' at once (library_wasm_bus.js holds what follows
+ * until the worker has attached to the bus), so 'run' can follow 'load' at
+ * once; that needs no help from this thread's event loop, which is blocked
+ * while main() waits on the bus. Any other worker keeps Emscripten's wait.
  * Call it after the glue has run and before the module is instantiated.
  * @param {WeakSet<object>} readyWorkers
- * @returns {boolean} false when the glue has no pthread pool to hook
+ * @returns {function(): void} load every worker still waiting for its 'load'
  */
-function startMainWhilePthreadWorkersLoad(readyWorkers) {
+function deferPthreadWorkerLoads(readyWorkers) {
   const PThread = globalThis.PThread;
-  if (!PThread || typeof PThread.loadWasmModuleToWorker !== 'function') return false;
-  const load = PThread.loadWasmModuleToWorker;
-  PThread.loadWasmModuleToWorker = function loadWithoutWaiting(worker, onFinishedLoading) {
-    if (!readyWorkers.has(worker)) return load.call(this, worker, onFinishedLoading);
-    load.call(this, worker, undefined);
+  const deferred = [];
+  const loadAll = () => {
+    for (const load of deferred.splice(0)) load();
+  };
+  if (!PThread || typeof PThread.loadWasmModuleToWorker !== 'function') return loadAll;
+  const loadToWorker = PThread.loadWasmModuleToWorker;
+  PThread.loadWasmModuleToWorker = function loadLater(worker, onFinishedLoading) {
+    if (!readyWorkers.has(worker)) return loadToWorker.call(this, worker, onFinishedLoading);
+    let pending = true;
+    const load = () => {
+      if (!pending) return;
+      pending = false;
+      delete worker.postMessage;
+      loadToWorker.call(PThread, worker, undefined);
+    };
+    // Emscripten's first message of its own to the worker sends the 'load' ahead of it.
+    worker.postMessage = function postAfterLoad(...args) {
+      load();
+      return worker.postMessage(...args);
+    };
+    deferred.push(load);
     // Emscripten's spawnThread posts 'run' at once to a loaded worker.
     worker.loaded = true;
     if (onFinishedLoading) onFinishedLoading(worker);
     return undefined;
   };
-  return true;
+  return loadAll;
+}
+
+/**
+ * Call `settle` once, when the program has settled after its start: when
+ * main() first sleeps on the bus (a node waiting for work), when it returns
+ * or yields to the event loop, or when the program exits. Until then,
+ * background work (pthread workers loading the program, the Runtime's next
+ * warm host booting) would compete with main() for the cores.
+ * @param {BusClient} client the main thread's bus client
+ * @param {function(): void} settle
+ * @returns {function(): void} settle now (idempotent)
+ */
+function settleOnce(client, settle) {
+  let done = false;
+  const once = () => {
+    if (done) return;
+    done = true;
+    settle();
+  };
+  client.beforeFirstSleep(once);
+  // Runs once main() returns or yields (the event loop is blocked before).
+  setTimeout(once, 0);
+  return once;
 }
 
 /**
@@ -228,10 +270,16 @@ function writeFiles(files, url) {
 export async function startProcess(msg, platform) {
   const post = platform.post;
   let exited = false;
+  let loadPthreadWorkers = () => {};
   const exit = (code, crashed, reason) => {
     if (exited) return;
     exited = true;
     post({ type: FromHost.EXIT, code, crashed, reason });
+  };
+  const settle = () => {
+    if (exited) return;
+    loadPthreadWorkers();
+    post({ type: FromHost.SETTLED });
   };
   try {
     const client = BusClient.attach(msg.bus, msg.pid);
@@ -248,7 +296,10 @@ export async function startProcess(msg, platform) {
       mainScriptUrlOrBlob: platform.locate(msg.glueFile),
       instantiateWasm: (imports, receive) => {
         WebAssembly.instantiate(module, imports).then(
-          (instance) => receiveOutsidePromise(() => receive(instance, module)),
+          (instance) => {
+            settleOnce(client, settle);
+            receiveOutsidePromise(() => receive(instance, module));
+          },
           (err) => exit(1, true, `cannot instantiate ${msg.wasmUrl}: ${err && err.message}`));
         return {};
       },
@@ -277,7 +328,7 @@ export async function startProcess(msg, platform) {
     const scripts = msg.scripts || {};
     let glueFromMemory = false;
     withPthreadStubs(() => { glueFromMemory = platform.loadGlue(msg.url, scripts[msg.url]) === true; }, scripts);
-    if (pthreadPool && pthreadPool.taken) startMainWhilePthreadWorkersLoad(pthreadPool.readyWorkers);
+    if (pthreadPool && pthreadPool.taken) loadPthreadWorkers = deferPthreadWorkerLoads(pthreadPool.readyWorkers);
     post({ type: FromHost.STARTED, prestartedPthreadWorkers: pthreadPool ? pthreadPool.taken : 0, glueFromMemory });
   } catch (err) {
     exit(1, true, `cannot start ${msg.url}: ${err && err.message ? err.message : err}`);

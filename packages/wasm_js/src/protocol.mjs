@@ -33,6 +33,11 @@ export const FromHost = Object.freeze({
    * text, or by URL) and main() is about to run
    */
   STARTED: 'started',
+  /**
+   * {type} main() has started and settled: it sleeps on the bus for the first time, or has
+   * returned or yielded to the event loop (not sent when the program exits first)
+   */
+  SETTLED: 'settled',
   /** {type, code, crashed, reason} */
   EXIT: 'exit',
 });

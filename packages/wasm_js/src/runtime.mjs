@@ -30,6 +30,13 @@ const ISOLATION_HELP =
   '"Cross-Origin-Opener-Policy: same-origin" and "Cross-Origin-Embedder-Policy: require-corp" ' +
   '(`colcon-wasm serve` does), and load it over http://localhost or https.';
 
+/**
+ * At most this long after a spawn took a warm host, the Runtime boots the
+ * next one even if the new program has not settled yet (main() computing
+ * without waiting on the bus).
+ */
+const REFILL_AFTER_MS = 200;
+
 const SEVERITY_RE = /^\[(DEBUG|INFO|WARN|ERROR|FATAL)\]/;
 // rcutils colours its console output when isatty() says yes, which it does
 // under Emscripten: "\x1b[33m[WARN] ...\x1b[0m".
@@ -129,6 +136,14 @@ export class NodeProcess {
     this._stdinWrites = Promise.resolve();
     /** Resolves with {code, crashed, reason} when the process has ended and left the graph. */
     this.exited = new Promise((resolve) => { this._resolve = resolve; });
+    /**
+     * Resolves (with nothing) once main() has started and settled: it first
+     * waits on the bus, or has returned or yielded to the event loop; or when
+     * the process has ended. performance.now() then: {@link NodeProcess#settledAt}.
+     */
+    this.settled = new Promise((resolve) => { this._resolveSettled = resolve; });
+    /** performance.now() when main() settled (null before, and when it ended first). */
+    this.settledAt = null;
   }
 
   _onMessage(m) {
@@ -147,6 +162,9 @@ export class NodeProcess {
       this.startedAt = performance.now();
       this.prestartedPthreadWorkers = m.prestartedPthreadWorkers || 0;
       this.glueFromMemory = !!m.glueFromMemory;
+    } else if (m.type === FromHost.SETTLED) {
+      if (this.settledAt === null && !this._done) this.settledAt = performance.now();
+      this._resolveSettled();
     } else if (m.type === FromHost.EXIT) {
       this._finish({ code: m.code, crashed: !!m.crashed, reason: m.reason || '' });
     }
@@ -155,6 +173,7 @@ export class NodeProcess {
   async _finish(result) {
     if (this._done) return;
     this._done = true;
+    this._resolveSettled();
     try {
       await this._worker.terminate();
     } catch (e) {
@@ -335,23 +354,29 @@ export class Runtime {
     while (!this._closed && this._spares.length < this._warm) this._spares.push(this._newHost());
   }
 
-  /** Resolves when the warm host workers are ready (e.g. before timing a spawn). */
+  /**
+   * Resolves when the warm host workers are ready (e.g. before timing a
+   * spawn); boots them now if a spawn has taken one and its program has not
+   * settled yet.
+   */
   async warm() {
+    this._fillSpares();
     await Promise.all(this._spares.map((s) => s.ready.catch(() => {})));
   }
 
   /**
    * A host worker for a spawn: a warm one (even while it still warms up),
-   * else a new one. The next warm host boots once this one is ready, so that
-   * its workers do not compete with the starting program for the cores.
+   * else a new one, which warms up first when the Runtime keeps warm hosts
+   * (spawns in a burst: its pthread workers boot alongside). The caller has
+   * the next warm host booted once the program has settled
+   * ({@link Runtime#_fillSparesOnceSettled}).
    */
   async _host() {
-    const spare = this._spares.shift();
+    let spare = this._spares.shift();
     if (!spare) {
-      this._fillSpares();
-      return startHostWorker();
+      if (this._warm === 0) return startHostWorker();
+      spare = this._newHost();
     }
-    spare.ready.then(() => this._fillSpares(), () => this._fillSpares());
     try {
       return await spare.host;
     } catch (e) {
@@ -470,10 +495,12 @@ export class Runtime {
     try {
       worker = await this._host();
     } catch (e) {
+      this._fillSpares();
       await this._reap(pid, null);
       throw new BusError(Code.ERROR, `spawn '${name}': cannot start a worker: ${e.message}`);
     }
     const proc = new NodeProcess(this, pid, name, worker, { ...spec, spawnedAt, stdinPipe });
+    this._fillSparesOnceSettled(proc);
     this.processes.set(pid, proc);
     worker.on('message', (m) => proc._onMessage(m));
     worker.on('error', (e) => {
@@ -488,6 +515,26 @@ export class Runtime {
       busModuleUrl: siblingUrl('bus_client.mjs'), hostModuleUrl: siblingUrl('host_common.mjs'),
     });
     return proc;
+  }
+
+  /**
+   * Boot the next warm host once `proc` has settled (or after
+   * REFILL_AFTER_MS): booting a host and its pthread workers meanwhile would
+   * compete with the starting program for the cores (~10 ms later first
+   * publish on two cores).
+   * @param {NodeProcess} proc
+   */
+  _fillSparesOnceSettled(proc) {
+    if (this._spares.length >= this._warm) return;
+    let timer = null;
+    const later = new Promise((resolve) => {
+      timer = setTimeout(resolve, REFILL_AFTER_MS);
+      if (timer && typeof timer.unref === 'function') timer.unref();
+    });
+    Promise.race([proc.settled, later]).then(() => {
+      clearTimeout(timer);
+      this._fillSpares();
+    });
   }
 
   /** Remove a dead process from the bus without blocking (main thread). */

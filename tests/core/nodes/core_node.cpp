@@ -704,10 +704,18 @@ int role_errors()
 }
 
 // A pthread that logs while main sleeps in a wait must not deadlock.
+// --wait-first-ms N: main first waits N ms on the bus (the host then counts
+// the program as settled and loads its pthread pool), then starts the thread.
 int role_threads()
 {
   Env e = make_env("threads");
   auto gc = must(GuardCondition::make(e.ctx), "guard");
+  const long wait_first_ms = opt_int("wait-first-ms", 0);  // NOLINT(runtime/int)
+  if (wait_first_ms > 0) {
+    auto idle = must(GuardCondition::make(e.ctx), "idle guard");
+    std::vector<WaitItem> nothing{WaitItem::of(idle.get())};
+    e.ws->wait(nothing, std::chrono::milliseconds(wait_first_ms));
+  }
   std::thread worker([&]() {
       for (int i = 0; i < 50; ++i) {
         std::printf("thread line %d\n", i);
