@@ -141,13 +141,12 @@ function deferPthreadWorkerLoads(readyWorkers) {
 
 /**
  * Call `settle` once, when the program has settled after its start: when
- * main() first sleeps on the bus (a node waiting for work), when it returns
- * or yields to the event loop, or when the program exits. Until then,
+ * main() first sleeps on the bus (a node waiting for work), or when it
+ * returns or yields to the event loop, whichever comes first. Until then,
  * background work (pthread workers loading the program, the Runtime's next
  * warm host booting) would compete with main() for the cores.
  * @param {BusClient} client the main thread's bus client
  * @param {function(): void} settle
- * @returns {function(): void} settle now (idempotent)
  */
 function settleOnce(client, settle) {
   let done = false;
@@ -159,7 +158,6 @@ function settleOnce(client, settle) {
   client.beforeFirstSleep(once);
   // Runs once main() returns or yields (the event loop is blocked before).
   setTimeout(once, 0);
-  return once;
 }
 
 /**
