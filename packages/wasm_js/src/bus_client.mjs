@@ -544,8 +544,7 @@ export class BusClient {
             `${op} on '${this.endpointName(ep)}' timed out after ${timeoutMs} ms: the ${KIND_NAMES[i32[rb + E.KIND]]} of node '${rname}' has not taken its oldest pending message and the writer's history of ${slots} messages is full (RELIABLE KEEP_ALL never drops); the message was not sent`);
         }
         // Readers ring only every eighth of the ring (_ringWaitingWriter): look again meanwhile.
-        if (this._beforeSleep !== null) this._firstSleep();
-        Atomics.wait(i32, this.bellIndex, bell, Math.min(deadline - t, ACK_RECHECK_MS));
+        this.sleep(bell, Math.min(deadline - t, ACK_RECHECK_MS));
         this._refresh();
         w = this._writerInfo(ep);
       }
@@ -634,8 +633,7 @@ export class BusClient {
         if (!pending) return true;
         const t = now();
         if (t >= deadline) return false;
-        if (this._beforeSleep !== null) this._firstSleep();
-        Atomics.wait(i32, this.bellIndex, bell, Math.min(deadline - t, ACK_RECHECK_MS));
+        this.sleep(bell, Math.min(deadline - t, ACK_RECHECK_MS));
       }
     } finally {
       Atomics.sub(bus.i32, b + E.ACK_WAITERS, 1);
