@@ -39,6 +39,18 @@ def test_messages_of_changing_sizes_arrive_intact_in_a_reused_buffer(platform):
 
 
 @pytest.mark.parametrize('platform', PLATFORMS)
+def test_large_messages_grow_the_bus_and_arrive_intact(platform):
+    run = harness.run(platform, 'large_messages')
+    _assert_all_delivered(run, 12)
+    bus = run['extra']['bus']
+    assert bus['bytes_after'] > bus['bytes_before'], harness.explain(run)
+    if platform == 'chromium':
+        # Chromium has multi-memory: the bus is a shared WebAssembly.Memory,
+        # and nodes copy into it and out of it with memory.copy.
+        assert bus['memory'], harness.explain(run)
+
+
+@pytest.mark.parametrize('platform', PLATFORMS)
 def test_one_publisher_fans_out_to_four_subscribers(platform):
     run = harness.run(platform, 'fanout')
     assert harness.results(run, 'pub')['matched'] == '4', harness.explain(run)

@@ -42,9 +42,11 @@ function parseResults(text, into) {
 }
 
 class Bench {
-  constructor(env) {
+  constructor(env, options = {}) {
     this.env = env;
     this.trace = env.trace || (() => {});
+    /** false: the bus is a SharedArrayBuffer even where it could be a WebAssembly.Memory. */
+    this.wasmMemory = options.wasmMemory !== false;
   }
 
   /**
@@ -53,7 +55,9 @@ class Bench {
    * spawn, which would run beside a latency or throughput measurement.
    */
   async runtime(warmHosts = 0) {
-    return this.env.Runtime.create({ maxMessageBytes: 2 * 1024 * 1024, maxBytes: 1024 * 1024 * 1024, warmHosts });
+    return this.env.Runtime.create({
+      maxMessageBytes: 2 * 1024 * 1024, maxBytes: 1024 * 1024 * 1024, warmHosts, wasmMemory: this.wasmMemory,
+    });
   }
 
   /** Spawn a bench_node role; resolves {proc, results, wait(key)}. */
@@ -270,14 +274,20 @@ class Bench {
 /**
  * Run every measurement; returns a JSON-able object.
  * @param {object} env {Runtime, HostWorker, exe: URL/path of bench_node.js, here: URL of this folder}
- * @param {object} [options] {quick: fewer/lower counts}
+ * @param {object} [options] {quick: fewer/lower counts, parts: what to measure,
+ *   wasmMemory: false for a bus that is a SharedArrayBuffer everywhere}
  */
 export async function runAll(env, options = {}) {
-  const b = new Bench(env);
+  const b = new Bench(env, options);
   const out = { latency: { ours: {}, raw: {}, poll: {} }, throughput: {}, start: {} };
   const q = options.quick ? 0.1 : 1;
   const log = env.log || (() => {});
   const parts = options.parts || ['ops', 'latency', 'throughput', 'fanout', 'start'];
+  {
+    const rt = await b.runtime();
+    out.busIsMemory = rt.bus.memory !== null;
+    await rt.close();
+  }
   if (parts.includes('ops')) {
     log('publish/take cost');
     out.ops = { 64: await b.oursOps(64), 1024: await b.oursOps(1024) };

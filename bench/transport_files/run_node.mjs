@@ -3,7 +3,7 @@
 /**
  * bench/transport in Node.js: prints the measurements as one JSON line.
  *
- *   node run_node.mjs WASM_JS_SRC_DIR BENCH_NODE_JS BENCH_NODE_NO_PTHREAD_JS [--quick] [--only=PART,...]
+ *   node run_node.mjs WASM_JS_SRC_DIR BENCH_NODE_JS BENCH_NODE_NO_PTHREAD_JS [--quick] [--only=PART,...] [--sab-bus]
  */
 
 import path from 'node:path';
@@ -28,6 +28,7 @@ const result = await runAll({
 }, {
   quick: flags.includes('--quick'),
   parts: only.length ? only : undefined,
+  wasmMemory: !flags.includes('--sab-bus'),
 });
 clearInterval(keepAlive);
 process.stdout.write(`${JSON.stringify(result)}\n`);

@@ -8,7 +8,7 @@
 // - the main runtime thread uses the one the wasm_js host puts in
 //   Module.wasmBus = {client, moduleUrl}; when the executable runs alone
 //   (`node exe.js`), it imports bus_client.mjs and creates a private bus;
-// - each pthread worker gets {cmd: 'wasmBus', sab, pid, moduleUrl} right
+// - each pthread worker gets {cmd: 'wasmBus', bus, pid, moduleUrl} right
 //   after Emscripten's 'load' message, imports bus_client.mjs and attaches;
 //   a run dependency holds the worker's 'loaded' reply until it has.
 // So no glue post-processing is needed for the bus to reach pthreads.
@@ -52,6 +52,20 @@ var LibraryWasmBus = {
     heapFor: function(end) {
       if (!WasmBus.hu8 || end > WasmBus.hu8.length) WasmBus.heap();
     },
+    // 1: messages are copied between the heap and the bus with memory.copy
+    // (BusClient.useHeapMemory: the bus is a WebAssembly.Memory and the engine
+    // has multi-memory), 2: through the heap views; 0: not decided yet (the
+    // heap of a non-pthread build exists only once the module is instantiated).
+    copyMode: 0,
+    // True when publish and take pass no view (null) and use memory.copy.
+    memoryCopy: function() {
+      if (WasmBus.copyMode === 0) {
+        WasmBus.copyMode = (typeof wasmMemory == 'object' && wasmMemory &&
+                            WasmBus.client.useHeapMemory(wasmMemory)) ? 1 : 2;
+      }
+      return WasmBus.copyMode === 1;
+    },
+
     // wasmTable.get() of the allocator functions, cached.
     fnIndex: [0, 0],
     fn: [null, null],
@@ -148,7 +162,7 @@ var LibraryWasmBus = {
         self.onmessage = function(e) {
           var d = e && e.data;
           if (d && d['cmd'] === 'wasmBus') {
-            if (!d['sab']) {
+            if (!d['bus']) {
               // The main thread has no bus: neither do we (contexts fail clearly).
               WasmBus.error = d['error'];
               attached();
@@ -156,7 +170,7 @@ var LibraryWasmBus = {
             }
             WasmBus.moduleUrl = d['moduleUrl'];
             import(d['moduleUrl']).then(function(m) {
-              WasmBus.client = m.BusClient.attach(d['sab'], d['pid']);
+              WasmBus.client = m.BusClient.attach(d['bus'], d['pid']);
             }).catch(function(err) {
               WasmBus.error = 'wasm_cpp: a thread could not attach to the bus (' + d['moduleUrl'] + '): ' + err;
             }).then(attached);
@@ -177,7 +191,7 @@ var LibraryWasmBus = {
         WasmBus.whenReady(function() {
           var c = WasmBus.client;
           worker.postMessage({
-            'cmd': 'wasmBus', 'sab': c ? c.bus.sab : null, 'pid': c ? c.pid : 0,
+            'cmd': 'wasmBus', 'bus': c ? c.bus.handle : null, 'pid': c ? c.pid : 0,
             'moduleUrl': WasmBus.moduleUrl, 'error': WasmBus.error,
           });
         });
@@ -309,7 +323,7 @@ var LibraryWasmBus = {
   wasm_bus_publish: function(ep, data, len, timeoutMs, seq) {
     try {
       WasmBus.heapFor(Math.max(data + len, seq + 8));
-      var s = WasmBus.client.publishFrom(ep, WasmBus.hu8, data, len, timeoutMs);
+      var s = WasmBus.client.publishFrom(ep, WasmBus.memoryCopy() ? null : WasmBus.hu8, data, len, timeoutMs);
       if (seq) {
         WasmBus.hi32[seq >> 2] = s % 4294967296;
         WasmBus.hi32[(seq >> 2) + 1] = Math.floor(s / 4294967296);
@@ -362,7 +376,7 @@ var LibraryWasmBus = {
           }
         }
         WasmBus.heapFor(Math.max(ptr + len, info + 72)); // the allocator may have grown the heap
-        if (c.takeCopy(WasmBus.hu8, ptr)) {
+        if (c.takeCopy(WasmBus.memoryCopy() ? null : WasmBus.hu8, ptr)) {
           var i = c.info;
           var f64 = WasmBus.hf64;
           var w = WasmBus.hi32;

@@ -164,6 +164,21 @@ const SCENARIOS = {
     await exits(ctx, ['sub', 'pub']);
   },
 
+  /**
+   * Messages of 1-3 MiB, all held until the publisher finished: the bus grows
+   * past its initial 16 MiB while nodes copy into it and out of it (with
+   * memory.copy where the bus is a WebAssembly.Memory).
+   */
+  async large_messages(ctx) {
+    const before = ctx.rt.bus.byteLength();
+    await start(ctx, 'sub', 'sub', { qos: 'keep_all', count: 12, 'wait-signal': '/test/large_done' });
+    await start(ctx, 'pub', 'pub', {
+      qos: 'keep_all', count: 12, sizes: '3000000,1048577,3145728', 'keep-all-depth': 16, signal: '/test/large_done',
+    });
+    await exits(ctx, ['sub', 'pub']);
+    ctx.extra.bus = { memory: ctx.rt.bus.memory !== null, bytes_before: before, bytes_after: ctx.rt.bus.byteLength() };
+  },
+
   /** One publisher fans out to 4 subscribers. */
   async fanout(ctx) {
     const subs = ['s1', 's2', 's3', 's4'];

@@ -21,6 +21,7 @@ import {
   LINK_TARGETED, LOCK_CONTENDED, LOCK_OWNER_MASK, MAGIC, MIN_CLASS_SHIFT, N, P, PROC_ALIVE,
   PROC_DEAD, PROC_FREE, QOS, REC_ALIVE, REC_FREE, S, SIZE_CLASSES,
 } from './layout.mjs';
+import { multiMemorySupported } from './copier.mjs';
 import {
   Durability, History, Reliability, checkCompatible, decodeQos, durationMs,
 } from './qos.mjs';
@@ -58,6 +59,8 @@ const decoder = new TextDecoder();
 
 /** How often lockAsync() re-checks whether the lock's owner died (ms). */
 const LOCK_RECHECK_MS = 50;
+/** WebAssembly page size: a bus that is a WebAssembly.Memory grows by whole pages. */
+const PAGE = 65536;
 
 /**
  * Atomics.waitAsync for at most `ms`, with a timer beside it: a pending
@@ -113,11 +116,15 @@ function nextPow2(n) {
 export const MAX_RING_SLOTS = 1 << 20;
 
 /**
- * One attachment to a bus SharedArrayBuffer.
+ * One attachment to a bus: a SharedArrayBuffer, or a shared
+ * WebAssembly.Memory where the engine can copy between memories (then the
+ * nodes' wasm heaps copy to and from it with memory.copy, see copier.mjs).
  */
 export class Bus {
   /**
-   * Create a new bus in a new (growable where supported) SharedArrayBuffer.
+   * Create a new bus in a new shared WebAssembly.Memory where the engine
+   * supports multi-memory, else in a new (growable where supported)
+   * SharedArrayBuffer.
    * @param {object} [options]
    * @param {number} [options.maxMessageBytes] largest message (default 64 MiB)
    * @param {number} [options.initialBytes] initial buffer size (default 16 MiB)
@@ -126,6 +133,7 @@ export class Bus {
    * @param {number} [options.maxNodes] node table size
    * @param {number} [options.maxEndpoints] endpoint table size
    * @param {number} [options.maxLinks] link table size (matched writer/reader pairs)
+   * @param {boolean} [options.wasmMemory] false: always a SharedArrayBuffer
    * @returns {Bus}
    */
   static create(options = {}) {
@@ -155,10 +163,23 @@ export class Bus {
       throw new BusError(Code.INVALID_ARGUMENT, `invalid bus options: tables need ${initial} bytes, more than maxBytes=${o.maxBytes}`);
     }
     let sab;
-    try {
-      sab = new SharedArrayBuffer(initial, { maxByteLength: o.maxBytes });
-    } catch (e) {
-      throw new BusError(Code.BAD_ALLOC, `cannot allocate the bus (${initial} bytes, up to ${o.maxBytes}): ${e.message}`);
+    let memory = null;
+    if (options.wasmMemory !== false && multiMemorySupported()) {
+      try {
+        memory = new WebAssembly.Memory({
+          initial: Math.ceil(initial / PAGE), maximum: Math.floor(o.maxBytes / PAGE), shared: true,
+        });
+        sab = memory.buffer;
+      } catch (e) {
+        memory = null; // e.g. no room for the reservation: a plain buffer will do
+      }
+    }
+    if (memory === null) {
+      try {
+        sab = new SharedArrayBuffer(initial, { maxByteLength: o.maxBytes });
+      } catch (e) {
+        throw new BusError(Code.BAD_ALLOC, `cannot allocate the bus (${initial} bytes, up to ${o.maxBytes}): ${e.message}`);
+      }
     }
     const i32 = new Int32Array(sab);
     i32[H.VERSION] = LAYOUT_VERSION;
@@ -179,30 +200,35 @@ export class Bus {
     i32[H.PROC_HWM] = 1;
     i32[H_PROC_HINT] = 1;
     Atomics.store(i32, H.MAGIC, MAGIC);
-    return new Bus(sab);
+    return new Bus(memory || sab);
   }
 
   /**
-   * Attach to an existing bus buffer (in another thread).
-   * @param {SharedArrayBuffer} sab
+   * Attach to an existing bus (in another thread).
+   * @param {SharedArrayBuffer|WebAssembly.Memory} handle another attachment's `handle`
    * @returns {Bus}
    */
-  static attach(sab) {
+  static attach(handle) {
+    const isMemory = typeof WebAssembly === 'object' && handle instanceof WebAssembly.Memory;
+    const sab = isMemory ? handle.buffer : handle;
     if (!(sab instanceof SharedArrayBuffer)) {
-      throw new BusError(Code.INVALID_ARGUMENT, `cannot attach to the bus: expected a SharedArrayBuffer, got ${Object.prototype.toString.call(sab)}`);
+      throw new BusError(Code.INVALID_ARGUMENT, `cannot attach to the bus: expected a SharedArrayBuffer or a shared WebAssembly.Memory, got ${Object.prototype.toString.call(handle)}`);
     }
     const i32 = new Int32Array(sab, 0, HEADER_WORDS);
     if (Atomics.load(i32, H.MAGIC) !== MAGIC || i32[H.VERSION] !== LAYOUT_VERSION) {
       throw new BusError(Code.ERROR,
         `cannot attach to the bus: not a wasm_js bus of layout version ${LAYOUT_VERSION} (magic ${i32[H.MAGIC]}, version ${i32[H.VERSION]}); were the runtime and the executable built from different wasm_js versions?`);
     }
-    return new Bus(sab);
+    return new Bus(handle);
   }
 
-  /** @param {SharedArrayBuffer} sab */
-  constructor(sab) {
-    this.sab = sab;
-    this._views(sab.byteLength);
+  /** @param {SharedArrayBuffer|WebAssembly.Memory} handle */
+  constructor(handle) {
+    /** The bus memory when it is a WebAssembly.Memory, else null. */
+    this.memory = typeof WebAssembly === 'object' && handle instanceof WebAssembly.Memory ? handle : null;
+    /** The buffer this thread's views cover (a shared memory's buffer is renewed as it grows). */
+    this.sab = this.memory ? this.memory.buffer : handle;
+    this._views(this.sab.byteLength);
     const h = this.i32;
     this.id = h[H.BUS_ID];
     this.procOff = h[H.PROC_OFF];
@@ -215,7 +241,18 @@ export class Bus {
     this.linkCap = h[H.LINK_CAP];
     this.maxMessage = h[H.MAX_MESSAGE];
     this.maxBytes = h[H.MAX_BYTES_MB] * 1024 * 1024;
-    this.growable = !!sab.growable;
+    this.growable = this.memory !== null || !!this.sab.growable;
+  }
+
+  /** What another thread passes to Bus.attach(): the memory or the buffer. */
+  get handle() {
+    return this.memory || this.sab;
+  }
+
+  /** The current size of the bus in bytes (it may have grown in another thread). */
+  byteLength() {
+    if (this.memory !== null) this.sab = this.memory.buffer;
+    return this.sab.byteLength;
   }
 
   // Fixed-length views: V8 accesses length-tracking views of a growable
@@ -232,7 +269,7 @@ export class Bus {
    * @returns {boolean} true when they were renewed
    */
   refreshViews() {
-    const len = this.sab.byteLength;
+    const len = this.byteLength();
     if (this.u8.length === len) return false;
     this._views(len);
     return true;
@@ -437,7 +474,7 @@ export class Bus {
     }
     const top = i32[H.ARENA_TOP];
     const end = top + BLOCK_HEADER_BYTES + 2 ** shift;
-    if (end > this.sab.byteLength && !this._grow(end)) return 0;
+    if (end > this.byteLength() && !this._grow(end)) return 0;
     const ri32 = this.i32;
     const hw = top >> 2;
     ri32[hw + B.CLASS] = cls;
@@ -495,12 +532,19 @@ export class Bus {
 
   _grow(end) {
     if (!this.growable || end > this.maxBytes) return false;
-    const len = this.sab.byteLength;
+    const len = this.byteLength();
     let target = Math.max(end, Math.min(this.maxBytes, len + Math.max(len >> 1, 8 * 1024 * 1024)));
     target = Math.min(this.maxBytes, Math.ceil(target / 65536) * 65536);
     if (target < end) return false;
     try {
-      this.sab.grow(target);
+      if (this.memory !== null) {
+        const t = Math.min(target, Math.floor(this.maxBytes / PAGE) * PAGE);
+        if (t < end) return false;
+        this.memory.grow((t - len) / PAGE);
+        this.sab = this.memory.buffer;
+      } else {
+        this.sab.grow(target);
+      }
     } catch (e) {
       return false;
     }
@@ -512,7 +556,7 @@ export class Bus {
   memoryUsage() {
     return {
       arenaUsed: Atomics.load(this.i32, H.ARENA_USED),
-      bufferBytes: this.sab.byteLength,
+      bufferBytes: this.byteLength(),
       maxBytes: this.maxBytes,
     };
   }

@@ -37,6 +37,7 @@ import {
   E, EP_FLAG_IGNORE_LOCAL, H, L, LINK_BEST_EFFORT, LINK_BLOCKING, LINK_TARGETED, N, P,
   PROC_KIND_NODE, QOS, REC_ALIVE, S,
 } from './layout.mjs';
+import { heapCopier } from './copier.mjs';
 import { History, Liveliness, encodeQos, resolveQos, validateQos } from './qos.mjs';
 
 /** Event kinds (values equal rmw_event_type_t / wasm_cpp::EventType). */
@@ -146,13 +147,13 @@ export class BusClient {
   }
 
   /**
-   * Attach a client to an existing bus buffer.
-   * @param {SharedArrayBuffer} sab
+   * Attach a client to an existing bus.
+   * @param {SharedArrayBuffer|WebAssembly.Memory} handle the bus' `handle`
    * @param {number} pid the process id the runtime assigned
    * @returns {BusClient}
    */
-  static attach(sab, pid) {
-    return new BusClient(Bus.attach(sab), pid);
+  static attach(handle, pid) {
+    return new BusClient(Bus.attach(handle), pid);
   }
 
   /**
@@ -195,6 +196,23 @@ export class BusClient {
     this.service = null;
     /** Called once, before this thread first sleeps on the bus (see beforeFirstSleep). */
     this._beforeSleep = null;
+    /**
+     * memory.copy between this thread's wasm heap and the bus (useHeapMemory),
+     * or null: publishFrom(ep, null, ...) and takeCopy(null, ...) need it.
+     * @type {?{toBus: function(number, number, number): void, fromBus: function(number, number, number): void}}
+     */
+    this.heapCopier = null;
+  }
+
+  /**
+   * Copy to and from `heap` (this thread's wasm memory) with memory.copy
+   * where the engine and the bus allow it (see copier.mjs).
+   * @param {WebAssembly.Memory} heap
+   * @returns {boolean} true when publishFrom(ep, null, ...) and takeCopy(null, ...) may be used
+   */
+  useHeapMemory(heap) {
+    this.heapCopier = this.bus.memory === null ? null : heapCopier(heap, this.bus.memory);
+    return this.heapCopier !== null;
   }
 
   /** The bus' largest message in bytes. */
@@ -414,7 +432,8 @@ export class BusClient {
 
   /**
    * Publish `len` bytes at `offset` of `heap` (e.g. a wasm heap) without
-   * creating a view of them.
+   * creating a view of them; `heap` null: of the memory given to
+   * useHeapMemory(), copied with memory.copy.
    * @returns {number} the message's sequence number
    */
   publishFrom(ep, heap, offset, len, timeoutMs = -1) {
@@ -490,7 +509,10 @@ export class BusClient {
         }
       }
       if (block + len > bus.u8.length) bus.refreshViews();
-      if (len) copyBytes(bus.u8, block, src, srcOff, len);
+      if (len) {
+        if (src === null) this.heapCopier.toBus(block, srcOff, len);
+        else copyBytes(bus.u8, block, src, srcOff, len);
+      }
       const t = now();
       const hi = i32[b + E.HEAD_HI] + (((n + 1) | 0) === 0 ? 1 : 0);
       i32[sw + S.LEN] = len;
@@ -807,7 +829,8 @@ export class BusClient {
    * Copy the message found by takeBegin() to `dst` at `dstOff`, validate it
    * and consume it. On false, call takeBegin() again (it was overwritten or
    * another thread took it).
-   * @param {Uint8Array} dst destination (e.g. the wasm heap)
+   * @param {?Uint8Array} dst destination (e.g. the wasm heap); null: the
+   *   memory given to useHeapMemory(), copied with memory.copy
    * @param {number} dstOff
    * @returns {boolean}
    */
@@ -827,7 +850,8 @@ export class BusClient {
       if (st.block + len > bus.u8.length && (!bus.refreshViews() || st.block + len > bus.u8.length)) {
         return false;
       }
-      copyBytes(dst, dstOff, bus.u8, st.block, len);
+      if (dst === null) this.heapCopier.fromBus(dstOff, st.block, len);
+      else copyBytes(dst, dstOff, bus.u8, st.block, len);
     }
     if (Atomics.load(i32, sw + S.COMMIT) !== st.commit) return false;
     const lb = bus.link(st.link);

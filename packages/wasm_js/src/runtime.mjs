@@ -288,6 +288,9 @@ export class Runtime {
    * @param {number} [options.warmPthreadWorkers=4] pthread workers each warm host boots
    *   ahead for a pthread program's pool (colcon-wasm's default
    *   `-sPTHREAD_POOL_SIZE`); 0: none (a program then boots its own)
+   * @param {boolean} [options.wasmMemory=true] false: the bus is a SharedArrayBuffer
+   *   even where it could be a WebAssembly.Memory copied to with memory.copy
+   *   (for comparisons; see copier.mjs)
    * @returns {Promise<Runtime>}
    * @throws {IsolationError} when the page is not cross-origin isolated
    */
@@ -307,7 +310,7 @@ export class Runtime {
   }
 
   constructor(bus, pid, options = {}) {
-    /** The bus (its SharedArrayBuffer is `bus.sab`). */
+    /** The bus (what workers attach to is `bus.handle`). */
     this.bus = bus;
     /** This runtime's own process id (owner of its registry mutations). */
     this.pid = pid;
@@ -511,7 +514,7 @@ export class Runtime {
       proc._finish({ code, crashed: code !== 0, reason: code !== 0 ? `worker exited with code ${code}` : '' });
     });
     worker.postMessage({
-      type: ToHost.START, bus: this.bus.sab, pid, url, wasmUrl, glueFile, args, env, name, wasmModule, stdin: stdinPipe && stdinPipe.sab, files, scripts,
+      type: ToHost.START, bus: this.bus.handle, pid, url, wasmUrl, glueFile, args, env, name, wasmModule, stdin: stdinPipe && stdinPipe.sab, files, scripts,
       busModuleUrl: siblingUrl('bus_client.mjs'), hostModuleUrl: siblingUrl('host_common.mjs'),
     });
     return proc;

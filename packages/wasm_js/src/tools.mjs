@@ -39,7 +39,7 @@ export class Tools {
   static async start(runtime, pid) {
     const worker = await HostWorker.start(siblingUrl('tools_worker.mjs'), { name: 'wasm_js tools', type: 'module' });
     const tools = new Tools(runtime, pid, worker);
-    await tools._call('init', [runtime.bus.sab, pid], ToTools.INIT);
+    await tools._call('init', [runtime.bus.handle, pid], ToTools.INIT);
     return tools;
   }
 
