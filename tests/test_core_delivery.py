@@ -44,9 +44,11 @@ def test_large_messages_grow_the_bus_and_arrive_intact(platform):
     _assert_all_delivered(run, 12)
     bus = run['extra']['bus']
     assert bus['bytes_after'] > bus['bytes_before'], harness.explain(run)
+    # Where the bus is a WebAssembly.Memory, both executables copied with
+    # memory.copy; else with TypedArray.set().
+    assert run['extra']['memory_copy'] == {'pub': bus['memory'], 'sub': bus['memory']}
     if platform == 'chromium':
-        # Chromium has multi-memory: the bus is a shared WebAssembly.Memory,
-        # and nodes copy into it and out of it with memory.copy.
+        # Chromium has multi-memory: the bus is a shared WebAssembly.Memory.
         assert bus['memory'], harness.explain(run)
 
 

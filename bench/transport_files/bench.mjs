@@ -126,7 +126,11 @@ class Bench {
       const disorder = sinks.reduce((a, s) => a + Number(s.results.disorder), 0);
       const received = sinks.reduce((a, s) => a + Number(s.results.received), 0);
       const msgsPerS = Math.min(...rates);
-      return { msgsPerS, bytesPerS: msgsPerS * size, disorder, lost: subs * count - received };
+      // How the nodes copied (known once they exited): memory.copy or TypedArray.set().
+      const procs = [flood, ...sinks].map((s) => s.proc);
+      await Promise.all(procs.map((p) => p.exited));
+      const memoryCopy = procs.every((p) => p.memoryCopy);
+      return { msgsPerS, bytesPerS: msgsPerS * size, disorder, lost: subs * count - received, memoryCopy };
     } finally {
       await rt.close();
     }

@@ -177,6 +177,7 @@ const SCENARIOS = {
     });
     await exits(ctx, ['sub', 'pub']);
     ctx.extra.bus = { memory: ctx.rt.bus.memory !== null, bytes_before: before, bytes_after: ctx.rt.bus.byteLength() };
+    ctx.extra.memory_copy = { pub: ctx.procs.pub.proc.memoryCopy, sub: ctx.procs.sub.proc.memoryCopy };
   },
 
   /** One publisher fans out to 4 subscribers. */

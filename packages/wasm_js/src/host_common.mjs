@@ -272,7 +272,10 @@ export async function startProcess(msg, platform) {
   const exit = (code, crashed, reason) => {
     if (exited) return;
     exited = true;
-    post({ type: FromHost.EXIT, code, crashed, reason });
+    // library_wasm_bus.js' state (the glue's top level is this worker's global scope).
+    const wasmBus = globalThis.WasmBus;
+    const memoryCopy = !!(wasmBus && wasmBus.copyMode === 1);
+    post({ type: FromHost.EXIT, code, crashed, reason, memoryCopy });
   };
   const settle = () => {
     if (exited) return;

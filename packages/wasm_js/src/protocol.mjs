@@ -38,7 +38,10 @@ export const FromHost = Object.freeze({
    * returned or yielded to the event loop (not sent when the program exits first)
    */
   SETTLED: 'settled',
-  /** {type, code, crashed, reason} */
+  /**
+   * {type, code, crashed, reason, memoryCopy} the program ended; memoryCopy: its main
+   * thread copied messages with memory.copy (see NodeProcess.memoryCopy)
+   */
   EXIT: 'exit',
 });
 

@@ -128,6 +128,13 @@ export class NodeProcess {
      * prefetched (browsers, shared module), false when it loaded it by URL.
      */
     this.glueFromMemory = false;
+    /**
+     * Known once the program has exited by itself: true when its main
+     * thread copied messages between its heap and the bus with
+     * memory.copy (the bus is a WebAssembly.Memory, see copier.mjs), false
+     * when it used TypedArray.set() or never published or took.
+     */
+    this.memoryCopy = false;
     this._runtime = runtime;
     this._worker = worker;
     this._options = options;
@@ -166,6 +173,7 @@ export class NodeProcess {
       if (this.settledAt === null && !this._done) this.settledAt = performance.now();
       this._resolveSettled();
     } else if (m.type === FromHost.EXIT) {
+      this.memoryCopy = !!m.memoryCopy;
       this._finish({ code: m.code, crashed: !!m.crashed, reason: m.reason || '' });
     }
   }
