@@ -62,6 +62,11 @@ const LOCK_RECHECK_MS = 50;
 /** WebAssembly page size: a bus that is a WebAssembly.Memory grows by whole pages. */
 const PAGE = 65536;
 
+/** True when `handle` is a WebAssembly.Memory (a bus handle is that or a SharedArrayBuffer). */
+function isWasmMemory(handle) {
+  return typeof WebAssembly === 'object' && handle instanceof WebAssembly.Memory;
+}
+
 /**
  * Atomics.waitAsync for at most `ms`, with a timer beside it: a pending
  * waitAsync does not keep Node.js's event loop alive, so a process whose
@@ -209,8 +214,7 @@ export class Bus {
    * @returns {Bus}
    */
   static attach(handle) {
-    const isMemory = typeof WebAssembly === 'object' && handle instanceof WebAssembly.Memory;
-    const sab = isMemory ? handle.buffer : handle;
+    const sab = isWasmMemory(handle) ? handle.buffer : handle;
     if (!(sab instanceof SharedArrayBuffer)) {
       throw new BusError(Code.INVALID_ARGUMENT, `cannot attach to the bus: expected a SharedArrayBuffer or a shared WebAssembly.Memory, got ${Object.prototype.toString.call(handle)}`);
     }
@@ -225,7 +229,7 @@ export class Bus {
   /** @param {SharedArrayBuffer|WebAssembly.Memory} handle */
   constructor(handle) {
     /** The bus memory when it is a WebAssembly.Memory, else null. */
-    this.memory = typeof WebAssembly === 'object' && handle instanceof WebAssembly.Memory ? handle : null;
+    this.memory = isWasmMemory(handle) ? handle : null;
     /** The buffer this thread's views cover (a shared memory's buffer is renewed as it grows). */
     this.sab = this.memory ? this.memory.buffer : handle;
     this._views(this.sab.byteLength);
@@ -534,13 +538,12 @@ export class Bus {
     if (!this.growable || end > this.maxBytes) return false;
     const len = this.byteLength();
     let target = Math.max(end, Math.min(this.maxBytes, len + Math.max(len >> 1, 8 * 1024 * 1024)));
-    target = Math.min(this.maxBytes, Math.ceil(target / 65536) * 65536);
+    // Whole pages (maxBytes is whole MiB), as a WebAssembly.Memory grows.
+    target = Math.min(this.maxBytes, Math.ceil(target / PAGE) * PAGE);
     if (target < end) return false;
     try {
       if (this.memory !== null) {
-        const t = Math.min(target, Math.floor(this.maxBytes / PAGE) * PAGE);
-        if (t < end) return false;
-        this.memory.grow((t - len) / PAGE);
+        this.memory.grow((target - len) / PAGE);
         this.sab = this.memory.buffer;
       } else {
         this.sab.grow(target);
