@@ -113,8 +113,14 @@ def compile_launcher_script():
     return Path(compile_launcher.__file__).resolve()
 
 
+def link_launcher_script():
+    """Get the link launcher script (run by CMake, see the toolchain)."""
+    from colcon_wasm.link import launcher
+    return Path(launcher.__file__).resolve()
+
+
 def cmake_arguments(*, emscripten, settings, install_base, rule,
-                    project_name, build_base=None):
+                    project_name, build_base=None, underlays=()):
     """
     Get the CMake arguments colcon-wasm passes (before the user's).
 
@@ -129,6 +135,7 @@ def cmake_arguments(*, emscripten, settings, install_base, rule,
       (holds the compile launcher's cache); None: per package
     :param rule: the recipe's :class:`PackageRule` for the package
     :param str project_name: the package name (for the project include)
+    :param underlays: install bases of the underlays, highest priority first
     :rtype: list
     """
     on_off = {True: 'ON', False: 'OFF'}
@@ -151,6 +158,10 @@ def cmake_arguments(*, emscripten, settings, install_base, rule,
         f'-DPython3_EXECUTABLE={sys.executable}',
         f'-DCOLCON_WASM_PYTHON={sys.executable}',
         f'-DCOLCON_WASM_LAUNCHER_SCRIPT={compile_launcher_script()}',
+        f'-DCOLCON_WASM_LINK_LAUNCHER_SCRIPT={link_launcher_script()}',
+        f"-DCOLCON_WASM_LLVM_NM={emscripten.llvm_tool('llvm-nm')}",
+        f"-DCOLCON_WASM_LLVM_CXXFILT={emscripten.llvm_tool('llvm-cxxfilt')}",
+        '-DCOLCON_WASM_UNDERLAYS=' + ';'.join(str(u) for u in underlays),
     ]
     if build_base is not None:
         args.append('-DCOLCON_WASM_LAUNCHER_CACHE='

@@ -102,6 +102,40 @@ class Emscripten:
         """Get a short description for logs and the manifest."""
         return {'version': self.version_string, 'root': str(self.root)}
 
+    def llvm_tool(self, name):
+        """
+        Get an LLVM tool of this Emscripten (e.g. `llvm-nm`).
+
+        Emscripten's configuration names the LLVM folder (`LLVM_ROOT`) and
+        Debian's adds a version suffix (`LLVM_ADD_VERSION`, e.g. 14:
+        `llvm-nm-14`); both are asked from `em-config` once.
+
+        :raises ColconWasmError: when the tool is not there
+        """
+        if not hasattr(self, '_llvm'):
+            answers = []
+            for key in ('LLVM_ROOT', 'LLVM_ADD_VERSION'):
+                try:
+                    completed = subprocess.run(
+                        [str(self.bin_dir / 'em-config'), key],
+                        capture_output=True, text=True, timeout=120,
+                        env=dict(os.environ, **self.environment()))
+                    answers.append(completed.stdout.strip()
+                                   if completed.returncode == 0 else '')
+                except (OSError, subprocess.SubprocessError):
+                    answers.append('')
+            self._llvm = tuple(answers)
+        root, suffix = self._llvm
+        names = [f'{name}-{suffix}', name] if suffix else [name]
+        for folder in ([Path(root)] if root else []) + [self.bin_dir]:
+            for candidate in names:
+                if (folder / candidate).is_file():
+                    return folder / candidate
+        raise ColconWasmError(
+            f"Emscripten at '{self.root}' has no {name} in its LLVM folder "
+            f"('{root or 'LLVM_ROOT unknown'}'): its installation is "
+            'incomplete; ' + INSTALL_HINT)
+
 
 def parse_version(text):
     """

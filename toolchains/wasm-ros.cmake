@@ -14,6 +14,10 @@
 #   COLCON_WASM_COMPILER_LAUNCHER  ON (default when COLCON_WASM_PYTHON is set): compile
 #                                through colcon_wasm/compile_launcher.py (clang directly)
 #   COLCON_WASM_LAUNCHER_SCRIPT  that script; COLCON_WASM_LAUNCHER_CACHE: its cache folder
+#   COLCON_WASM_LINK_LAUNCHER_SCRIPT  colcon_wasm/link/launcher.py: runs every executable link
+#                                (RULE_LAUNCH_LINK), see colcon_wasm/link/__init__.py
+#   COLCON_WASM_LLVM_NM, COLCON_WASM_LLVM_CXXFILT  the LLVM tools of the Emscripten in use
+#   COLCON_WASM_UNDERLAYS        install bases of the underlays (a list), highest priority first
 # This file is read again for every try_compile: the variables are forwarded
 # through CMAKE_TRY_COMPILE_PLATFORM_VARIABLES, and so are the results of the
 # probes below (COLCON_WASM_PROBED_*), which run once per build folder.
@@ -23,6 +27,8 @@ set(_colcon_wasm_vars
   COLCON_WASM_PTHREAD COLCON_WASM_PTHREAD_POOL_SIZE COLCON_WASM_DEBUG
   COLCON_WASM_OPT_LEVEL COLCON_WASM_LINK_OPT_LEVEL COLCON_WASM_ENV COLCON_WASM_PYTHON
   COLCON_WASM_COMPILER_LAUNCHER COLCON_WASM_LAUNCHER_SCRIPT COLCON_WASM_LAUNCHER_CACHE
+  COLCON_WASM_LINK_LAUNCHER_SCRIPT COLCON_WASM_LLVM_NM COLCON_WASM_LLVM_CXXFILT
+  COLCON_WASM_UNDERLAYS
   COLCON_WASM_PROBED_CLANG_VERSION COLCON_WASM_PROBED_EMSCRIPTEN_VERSION
   COLCON_WASM_PROBED_CACHE)
 list(APPEND CMAKE_TRY_COMPILE_PLATFORM_VARIABLES ${_colcon_wasm_vars})
@@ -127,6 +133,10 @@ include("${_colcon_wasm_platform}")
 if(COLCON_WASM_INSTALL_BASE)
   list(APPEND CMAKE_FIND_ROOT_PATH "${COLCON_WASM_INSTALL_BASE}")
 endif()
+# the underlays' install bases too (`--wasm-underlay`, COLCON_WASM_PREFIX_PATH)
+foreach(_colcon_wasm_underlay IN LISTS COLCON_WASM_UNDERLAYS)
+  list(APPEND CMAKE_FIND_ROOT_PATH "${_colcon_wasm_underlay}")
+endforeach()
 
 # flags for every compile and link (this file is read more than once per
 # project: append once)
@@ -179,3 +189,64 @@ endif()
 
 # no dlopen: static libraries only
 set_property(GLOBAL PROPERTY TARGET_SUPPORTS_SHARED_LIBS FALSE)
+
+# Every executable link goes through the link launcher, which links what a
+# ROS system would load at run time: class_loader registrations, the plugins
+# pluginlib loads, the components a container hosts (colcon_wasm/link/).
+set(_colcon_wasm_link_launcher "")
+if(COLCON_WASM_PYTHON AND COLCON_WASM_LINK_LAUNCHER_SCRIPT AND COLCON_WASM_LLVM_NM)
+  set(_colcon_wasm_link_cache "${COLCON_WASM_LAUNCHER_CACHE}")
+  if(_colcon_wasm_link_cache)
+    get_filename_component(_colcon_wasm_link_cache "${_colcon_wasm_link_cache}" DIRECTORY)
+    set(_colcon_wasm_link_cache "${_colcon_wasm_link_cache}/link_launcher")
+  else()
+    set(_colcon_wasm_link_cache "${CMAKE_BINARY_DIR}/CMakeFiles/colcon_wasm/link")
+  endif()
+  set(_colcon_wasm_link_bases "${COLCON_WASM_INSTALL_BASE}")
+  foreach(_colcon_wasm_underlay IN LISTS COLCON_WASM_UNDERLAYS)
+    string(APPEND _colcon_wasm_link_bases ":${_colcon_wasm_underlay}")
+  endforeach()
+  set(_colcon_wasm_link_launcher
+    "${COLCON_WASM_PYTHON} -I -S ${COLCON_WASM_LINK_LAUNCHER_SCRIPT} --cache ${_colcon_wasm_link_cache} --nm ${COLCON_WASM_LLVM_NM} --cxxfilt ${COLCON_WASM_LLVM_CXXFILT} --bases ${_colcon_wasm_link_bases}")
+  set_property(GLOBAL PROPERTY RULE_LAUNCH_LINK "${_colcon_wasm_link_launcher} --")
+endif()
+set(_COLCON_WASM_TOOLCHAIN_DIR "${CMAKE_CURRENT_LIST_DIR}")
+
+# colcon_wasm_capture_link_closure(<library>)
+#
+# Record what linking <library> needs (its link closure), installed as
+# share/<pkg>/colcon_wasm/closures/<name>.json: executables that load the
+# library at run time (a component container, a pluginlib user) link it
+# from there. Called for component and plugin libraries by colcon-wasm's
+# extras of rclcpp_components and pluginlib. It links a throw-away executable
+# against the library with the link launcher in capture mode.
+function(colcon_wasm_capture_link_closure library)
+  if(NOT _colcon_wasm_link_launcher OR NOT TARGET ${library})
+    return()
+  endif()
+  get_target_property(_type ${library} TYPE)
+  if(NOT _type STREQUAL "STATIC_LIBRARY")
+    return()  # an interface or object library: nothing of its own to link
+  endif()
+  get_target_property(_aliased ${library} ALIASED_TARGET)
+  if(_aliased)
+    set(library ${_aliased})
+  endif()
+  set(_probe colcon_wasm_closure__${library})
+  if(TARGET ${_probe})
+    return()
+  endif()
+  get_target_property(_name ${library} ARCHIVE_OUTPUT_NAME)
+  if(NOT _name)
+    get_target_property(_name ${library} OUTPUT_NAME)
+  endif()
+  if(NOT _name)
+    set(_name ${library})
+  endif()
+  set(_out "${CMAKE_CURRENT_BINARY_DIR}/colcon_wasm_closures/${_name}.json")
+  add_executable(${_probe} "${_COLCON_WASM_TOOLCHAIN_DIR}/link/closure_main.cpp")
+  target_link_libraries(${_probe} PRIVATE ${library})
+  set_target_properties(${_probe} PROPERTIES RULE_LAUNCH_LINK
+    "${_colcon_wasm_link_launcher} --capture ${_out} --package ${PROJECT_NAME} --build-dir ${CMAKE_BINARY_DIR} --install-prefix ${CMAKE_INSTALL_PREFIX} --")
+  install(FILES "${_out}" DESTINATION share/${PROJECT_NAME}/colcon_wasm/closures)
+endfunction()

@@ -181,6 +181,30 @@ function receiveOutsidePromise(fn) {
 }
 
 /**
+ * Describe an uncaught C++ exception: Emscripten throws the thrown object's
+ * address (a number). wasm_cpp's `wasm_cpp_exception_text` (linked into every
+ * executable that uses the bus) gives its type and what(), as a native
+ * std::terminate prints them. Other values (JS errors, traps) give null.
+ * @param {*} value what reached Emscripten's quit()
+ * @returns {{type: string, what: string|null}|null}
+ */
+export function describeUncaughtException(value) {
+  const g = globalThis;
+  if (typeof value !== 'number' || typeof g.ExceptionInfo !== 'function') return null;
+  const text = typeof g._wasm_cpp_exception_text === 'function' ? g._wasm_cpp_exception_text : null;
+  if (!text || typeof g.UTF8ToString !== 'function') return { type: '(unknown: not linked with wasm_cpp)', what: null };
+  try {
+    const type = new g.ExceptionInfo(value).get_type();
+    const pointer = text(value, type);
+    const [name, ...what] = g.UTF8ToString(pointer).split('\n');
+    if (typeof g._free === 'function') g._free(pointer);
+    return { type: name, what: what.length ? what.join('\n') : null };
+  } catch (e) {
+    return null;
+  }
+}
+
+/**
  * Standard input without a pipe: end of file at once (a worker has no
  * terminal to read from). Emscripten calls the reader once per byte.
  * @returns {null}
@@ -319,6 +343,13 @@ export async function startProcess(msg, platform) {
       // the last messages (log lines) posted to the runtime: let close() end
       // the worker once they are out.
       quit: (status, toThrow) => {
+        const uncaught = describeUncaughtException(toThrow);
+        if (uncaught) {
+          // what a native process prints when std::terminate ends it
+          post({ type: FromHost.LOG, stream: 'stderr', text: `terminate called after throwing an instance of '${uncaught.type}'` });
+          if (uncaught.what !== null) post({ type: FromHost.LOG, stream: 'stderr', text: `  what():  ${uncaught.what}` });
+          exit(1, true, `uncaught exception of type '${uncaught.type}'${uncaught.what !== null ? `: ${uncaught.what}` : ''}`);
+        }
         throw toThrow;
       },
       onAbort: (what) => {

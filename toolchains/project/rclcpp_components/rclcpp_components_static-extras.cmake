@@ -1,46 +1,28 @@
-# colcon-wasm: static composition for rclcpp_components (WebAssembly has no dlopen).
+# colcon-wasm: composition without dlopen for rclcpp_components.
 #
 # Installed by colcon-wasm's project include for rclcpp_components and
 # included at the end of rclcpp_componentsConfig.cmake, after
-# rclcpp_components' own extras, so the definitions below replace theirs:
+# rclcpp_components' own extras (docs/composition.md). What upstream does at
+# run time with dlopen is done at link time by colcon-wasm's link launcher
+# (colcon_wasm/link/): it keeps every component registration of the archives
+# an executable links, and links every registered component into an
+# executable that hosts a ComponentManager. So this file only:
 #
-# * rclcpp_components_register_nodes(<target> [RESOURCE_INDEX <index>] <class>...)
-#   accepts the static library that add_library(<target> SHARED ...) becomes
-#   on this platform, and records the classes on the target.
-# * rclcpp_components_register_node(<target> PLUGIN <class> EXECUTABLE <exe>
-#   [EXECUTOR <executor>] [RESOURCE_INDEX <index>]) builds <exe> from
-#   node_main_static.cpp.in, with <target> linked in full (whole archive):
-#   the component's RCLCPP_COMPONENTS_REGISTER_NODE registers its factory in
-#   class_loader's registry before main(), and main() instantiates it from there.
-# * rclcpp_components_static_container(<exe> COMPONENTS <target>...
-#   [EXECUTOR <executor>]) (new) builds a component container that hosts the
-#   components of the given targets (chosen at build time): it answers the
-#   usual ~/_container/load_node, unload_node and list_nodes services.
+# * lets rclcpp_components_register_nodes() accept the static library that
+#   add_library(<target> SHARED ...) becomes on this platform (upstream
+#   refuses anything but a shared library), and records the library's link
+#   closure so that containers can link it;
+# * makes rclcpp_components_register_node() link the component library into
+#   the executable it generates (upstream's executable loads it by name at
+#   run time); the executable's source is upstream's node_main.cpp.in;
+# * adds rclcpp_components_static_container(), a container that hosts only
+#   the components of the targets it is given.
 #
-# The ament resource index entries are written as before (class;lib/<archive>),
-# so tools that list components still see them.
+# The ament resource index entries are written as before (class;lib/<archive>).
 
-set(rclcpp_components_NODE_TEMPLATE "${rclcpp_components_SHARE_DIR}/node_main_static.cpp.in")
-set(rclcpp_components_CONTAINER_TEMPLATE
-  "${rclcpp_components_SHARE_DIR}/component_container_static.cpp.in")
-
-# Link a static component library into an executable in full: nothing in the
-# executable references the component's registration object, so a normal
-# static link would drop it.
-function(_rclcpp_components_link_whole_archive executable library)
-  get_target_property(_type ${library} TYPE)
-  if(NOT _type STREQUAL "STATIC_LIBRARY")
-    message(FATAL_ERROR "colcon-wasm: component library '${library}' of '${executable}' "
-      "is a ${_type}; WebAssembly builds need a static (or SHARED, which becomes static) "
-      "library")
-  endif()
-  target_link_libraries(${executable}
-    "-Wl,--whole-archive $<TARGET_FILE:${library}> -Wl,--no-whole-archive"
-    ${library})
-endfunction()
-
-# Remember the component classes of a target (for containers) and in the
-# ament resource index (as upstream does).
+# Remember the component classes of a target (for static containers), write
+# the ament resource index entries as upstream does, and record the link
+# closure of the library.
 macro(_rclcpp_components_record_classes target resource_index)
   _rclcpp_components_register_package_hook()
   foreach(_class ${ARGN})
@@ -49,6 +31,9 @@ macro(_rclcpp_components_record_classes target resource_index)
       "${_RCLCPP_COMPONENTS_${resource_index}__NODES}${_class};lib/$<TARGET_FILE_NAME:${target}>\n")
     list(APPEND _RCLCPP_COMPONENTS_PACKAGE_RESOURCE_INDICES ${resource_index})
   endforeach()
+  if(COMMAND colcon_wasm_capture_link_closure)
+    colcon_wasm_capture_link_closure(${target})
+  endif()
 endmacro()
 
 macro(rclcpp_components_register_nodes target)
@@ -61,6 +46,12 @@ macro(rclcpp_components_register_nodes target)
   if(NOT "${_ARGS_RESOURCE_INDEX}" STREQUAL "")
     set(_resource_index ${_ARGS_RESOURCE_INDEX})
   endif()
+  get_target_property(_colcon_wasm_type ${target} TYPE)
+  if(NOT _colcon_wasm_type STREQUAL "STATIC_LIBRARY")
+    message(FATAL_ERROR "rclcpp_components_register_nodes() first argument "
+      "'${target}' is a ${_colcon_wasm_type}; a component library must be a library "
+      "(add_library(${target} SHARED ...), which is static in WebAssembly builds)")
+  endif()
   set(_unique_names)
   foreach(_arg ${_ARGS_UNPARSED_ARGUMENTS})
     if(_arg IN_LIST _unique_names)
@@ -72,43 +63,36 @@ macro(rclcpp_components_register_nodes target)
   _rclcpp_components_record_classes(${target} ${_resource_index} ${_unique_names})
 endmacro()
 
+# Upstream's macro (which generates the executable from node_main.cpp.in),
+# then the link of the component library: the generated main() creates a
+# class_loader::ClassLoader for the library, which is linked (rcutils,
+# patched by colcon-wasm, "loads" the linked libraries).
 macro(rclcpp_components_register_node target)
-  cmake_parse_arguments(ARGS "" "PLUGIN;EXECUTABLE;EXECUTOR;RESOURCE_INDEX" "" ${ARGN})
-  if(ARGS_UNPARSED_ARGUMENTS)
-    message(FATAL_ERROR "rclcpp_components_register_node() called with unused "
-      "arguments: ${ARGS_UNPARSED_ARGUMENTS}")
+  cmake_parse_arguments(_colcon_wasm_ARGS "" "PLUGIN;EXECUTABLE;EXECUTOR;RESOURCE_INDEX" ""
+    ${ARGN})
+  _rclcpp_components_register_node(${target} ${ARGN})
+  target_link_libraries(${_colcon_wasm_ARGS_EXECUTABLE} ${target})
+  if(COMMAND colcon_wasm_capture_link_closure)
+    colcon_wasm_capture_link_closure(${target})
   endif()
-  if("${ARGS_PLUGIN}" STREQUAL "")
-    message(FATAL_ERROR "rclcpp_components_register_node macro requires a PLUGIN "
-      "argument for target ${target}")
+  get_property(_colcon_wasm_classes TARGET ${target} PROPERTY COLCON_WASM_COMPONENT_CLASSES)
+  if(NOT "${_colcon_wasm_ARGS_PLUGIN}" IN_LIST _colcon_wasm_classes)
+    set_property(TARGET ${target} APPEND PROPERTY COLCON_WASM_COMPONENT_CLASSES
+      "${_colcon_wasm_ARGS_PLUGIN}")
   endif()
-  if("${ARGS_EXECUTABLE}" STREQUAL "")
-    message(FATAL_ERROR "rclcpp_components_register_node macro requires a EXECUTABLE "
-      "argument for target ${target}")
-  endif()
-  set(resource_index "rclcpp_components")
-  if(NOT "${ARGS_RESOURCE_INDEX}" STREQUAL "")
-    set(resource_index ${ARGS_RESOURCE_INDEX})
-  endif()
-  set(executor "SingleThreadedExecutor")
-  if(NOT "${ARGS_EXECUTOR}" STREQUAL "")
-    set(executor ${ARGS_EXECUTOR})
-  endif()
-  set(component ${ARGS_PLUGIN})
-  set(node ${ARGS_EXECUTABLE})
-  set(library_name "$<TARGET_FILE_NAME:${target}>")
-  _rclcpp_components_record_classes(${target} ${resource_index} ${component})
-
-  configure_file(${rclcpp_components_NODE_TEMPLATE}
-    ${PROJECT_BINARY_DIR}/rclcpp_components/node_main_configured_${node}.cpp.in)
-  file(GENERATE OUTPUT ${PROJECT_BINARY_DIR}/rclcpp_components/node_main_${node}.cpp
-    INPUT ${PROJECT_BINARY_DIR}/rclcpp_components/node_main_configured_${node}.cpp.in)
-  add_executable(${node} ${PROJECT_BINARY_DIR}/rclcpp_components/node_main_${node}.cpp)
-  _rclcpp_components_link_whole_archive(${node} ${target})
-  ament_target_dependencies(${node} "rclcpp" "class_loader" "rclcpp_components")
-  install(TARGETS ${node} DESTINATION lib/${PROJECT_NAME})
 endmacro()
 
+set(rclcpp_components_CONTAINER_TEMPLATE
+  "${rclcpp_components_SHARE_DIR}/component_container_static.cpp.in")
+
+# rclcpp_components_static_container(<exe> COMPONENTS <target>... [EXECUTOR <executor>])
+#
+# A component container that hosts the components of the given targets only
+# (colcon-wasm extra: the stock component_container hosts every component of
+# the install space). It answers the usual ~/_container/load_node,
+# unload_node and list_nodes services. Guard it with
+# if(COMMAND rclcpp_components_static_container) in a package that also
+# builds natively.
 function(rclcpp_components_static_container container)
   cmake_parse_arguments(ARGS "" "EXECUTOR" "COMPONENTS" ${ARGN})
   if(ARGS_UNPARSED_ARGUMENTS)
@@ -142,9 +126,7 @@ function(rclcpp_components_static_container container)
   configure_file(${rclcpp_components_CONTAINER_TEMPLATE}
     ${PROJECT_BINARY_DIR}/rclcpp_components/container_main_${container}.cpp @ONLY)
   add_executable(${container} ${PROJECT_BINARY_DIR}/rclcpp_components/container_main_${container}.cpp)
-  foreach(_target ${ARGS_COMPONENTS})
-    _rclcpp_components_link_whole_archive(${container} ${_target})
-  endforeach()
+  target_link_libraries(${container} ${ARGS_COMPONENTS})
   ament_target_dependencies(${container} "rclcpp" "class_loader" "rclcpp_components")
   install(TARGETS ${container} DESTINATION lib/${PROJECT_NAME})
 endfunction()
