@@ -22,6 +22,12 @@ PTHREAD_POOL_SIZE_ENVIRONMENT_VARIABLE = EnvironmentVariable(
     'Set the default number of workers started with each --wasm executable')
 PTHREAD_POOL_SIZE_ENV = PTHREAD_POOL_SIZE_ENVIRONMENT_VARIABLE.name
 
+"""Environment variable: the --wasm underlays (set by sourcing setup.sh)."""
+PREFIX_PATH_ENVIRONMENT_VARIABLE = EnvironmentVariable(
+    'COLCON_WASM_PREFIX_PATH',
+    'The install bases built with --wasm that --wasm builds stand on and '
+    'colcon-wasm serve/run/launch read (set by sourcing install_wasm/setup.sh)')
+
 
 def add_wasm_arguments(parser):
     """
@@ -42,6 +48,11 @@ def add_wasm_arguments(parser):
         '--wasm-recipe', metavar='FILE', action='append', default=[],
         help='Recipe file applied on top of the default Humble recipe '
              '(repeatable, applied in order)')
+    parser.add_argument(
+        '--wasm-underlay', metavar='PATH', action='append', default=[],
+        help='An install base built with --wasm to build on (repeatable, '
+             'highest priority first; also read from $COLCON_WASM_PREFIX_PATH, '
+             'which sourcing its setup.sh sets)')
     parser.add_argument(
         '--wasm-debug', action='store_true',
         help='Debug build: -g and -sASSERTIONS=2')

@@ -11,7 +11,7 @@ class BuildPlan:
     """How one package is built with `--wasm`."""
 
     def __init__(self, *, original_type, recipe, rule, emscripten, settings,
-                 host_tool=False):
+                 host_tool=False, underlays=()):
         """
         Describe the wasm build of a package.
 
@@ -24,6 +24,8 @@ class BuildPlan:
         :param settings: the :class:`colcon_wasm.options.WasmSettings`
         :param bool host_tool: a recipe host tool (pure Python, built by its
           stock task for the host; no CMake arguments, no post-processing)
+        :param underlays: install bases of the `--wasm` underlays, highest
+          priority first
         """
         self.original_type = original_type
         self.recipe = recipe
@@ -31,3 +33,4 @@ class BuildPlan:
         self.emscripten = emscripten
         self.settings = settings
         self.host_tool = host_tool
+        self.underlays = list(underlays)

@@ -38,6 +38,39 @@ COMPANIONS = (('.wasm', 'wasm'), ('.worker.js', 'worker'),
 """Text in the glue the build made when an executable links the bus library."""
 BUS_MARKER = 'wasmBus'
 
+"""Suffix of the link launcher's report beside a linked `.js`."""
+LINK_REPORT_SUFFIX = '.colcon_wasm_link.json'
+
+
+def read_link_report(build_js):
+    """
+    Read what the link launcher linked into an executable.
+
+    :returns: the report's plugins, components and registered classes, or
+      None for an executable linked without the launcher
+    """
+    path = Path(str(build_js) + LINK_REPORT_SUFFIX)
+    try:
+        report = json.loads(path.read_text())
+    except (OSError, ValueError):
+        return None
+    return {key: report.get(key, []) for key in (
+        'plugins', 'components', 'registrations', 'plugin_base_classes')}
+
+
+def provided_package(installed_js, prefix, pkg_name):
+    """
+    Get the package an executable is installed for.
+
+    `lib/<pkg>/<exe>.js` names its package; a package may install
+    executables for another one (colcon-wasm's component containers install
+    `lib/rclcpp_components/component_container.js`). None: its own.
+    """
+    parts = installed_js.relative_to(prefix).parts
+    if len(parts) == 3 and parts[0] == 'lib' and parts[1] != pkg_name:
+        return parts[1]
+    return None
+
 
 class Executable:
     """An installed executable: its `.js` and the build's companions."""
@@ -237,13 +270,20 @@ def postprocess_package(*, pkg_name, pkg_version, build_base, install_prefix,
                 glue.inject_file(path, fragments, target=role,
                                  context=context)
         text = executable.build_js.read_text()
-        entries.append({
+        entry = {
             'name': executable.name,
             'js': executable.installed_js.relative_to(prefix).as_posix(),
             'files': [file_entry(path, prefix, role) for role, path in files],
             'uses_bus': BUS_MARKER in text,
             'pthread': context['pthread'],
-        })
+        }
+        provides = provided_package(executable.installed_js, prefix, pkg_name)
+        if provides:
+            entry['package'] = provides
+        linked = read_link_report(executable.build_js)
+        if linked is not None:
+            entry['linked'] = linked
+        entries.append(entry)
     manifest = {
         'schema': MANIFEST_SCHEMA,
         'package': pkg_name,

@@ -3,6 +3,10 @@
 
 """What an install space of ``colcon build --wasm`` holds, read from manifests.
 
+An install space is an install base and the ``--wasm`` underlays it was
+built on (highest priority first); a package is taken from the first base
+that has it.
+
 ``serve``, ``run`` and ``launch`` find executables only through the
 per-package ``share/<pkg>/colcon_wasm/manifest.json`` (docs/design.md §5) and
 type descriptions through ``share/<pkg>/colcon_wasm/types.json``.  Isolated
@@ -10,9 +14,49 @@ type descriptions through ``share/<pkg>/colcon_wasm/types.json``.  Isolated
 """
 
 import json
+import os
 from pathlib import Path
 
 MANIFEST_SCHEMA = 1
+
+"""The marker of an install base built with ``colcon build --wasm``."""
+INSTALL_MARKER = '.colcon_wasm_install.json'
+
+"""The variable that sourced ``setup.sh`` files of ``--wasm`` install bases set."""
+PREFIX_PATH_VARIABLE = 'COLCON_WASM_PREFIX_PATH'
+
+
+def _default_underlays(base, environ):
+    """Get the underlays of a base: its marker's, then COLCON_WASM_PREFIX_PATH."""
+    underlays = []
+    marker = base / INSTALL_MARKER
+    if marker.is_file():
+        try:
+            underlays += json.loads(marker.read_text(encoding='utf-8')).get('underlays', [])
+        except (OSError, ValueError):
+            pass
+    underlays += [p for p in environ.get(PREFIX_PATH_VARIABLE, '').split(os.pathsep) if p]
+    return underlays
+
+
+def _scan_base(base):
+    """Find the packages of one install base (merged or isolated layout)."""
+    found = {}
+    merged_index = base / 'share' / 'colcon-core' / 'packages'
+    if merged_index.is_dir():
+        for marker in merged_index.iterdir():
+            found[marker.name] = Package(marker.name, base)
+    merged_share = base / 'share'
+    if merged_share.is_dir():
+        for manifest in merged_share.glob('*/colcon_wasm/manifest.json'):
+            name = manifest.parent.parent.name
+            found.setdefault(name, Package(name, base))
+    for child in sorted(base.iterdir()):
+        if child.name in found or not child.is_dir() or child.name == 'share':
+            continue
+        if (child / 'share' / child.name).is_dir():
+            found[child.name] = Package(child.name, child)
+    return found
 
 
 class InstallSpaceError(Exception):
@@ -32,11 +76,14 @@ class Executable:
                       for f in entry.get('files', [])]
         self.uses_bus = bool(entry.get('uses_bus', True))
         self.pthread = bool(entry.get('pthread', False))
+        # a package may install executables for another one (colcon-wasm's
+        # component containers are rclcpp_components' executables)
+        self.package_name = entry.get('package') or package.name
 
     @property
     def label(self):
         """Return ``pkg/exe``."""
-        return '{}/{}'.format(self.package.name, self.name)
+        return '{}/{}'.format(self.package_name, self.name)
 
 
 class Package:
@@ -78,11 +125,17 @@ class Package:
 
 
 class InstallSpace:
-    """The packages of one install base."""
+    """The packages of an install base and of the underlays it was built on."""
 
-    def __init__(self, base):
+    def __init__(self, base, underlays=None, environ=None):
         """
-        Open an install base.
+        Open an install base and its underlays.
+
+        The underlays are, highest priority first, the ones given, else the
+        ones the base was built on (its ``--wasm`` marker) followed by the
+        entries of ``COLCON_WASM_PREFIX_PATH``; those that do not exist (a
+        moved underlay) are left out. A package in several bases is taken
+        from the first, as ``AMENT_PREFIX_PATH`` orders prefixes.
 
         :raises InstallSpaceError: when the directory does not exist
         """
@@ -91,24 +144,24 @@ class InstallSpace:
             raise InstallSpaceError(
                 "no install space at '{}': run 'colcon build --wasm' in the workspace "
                 'first, or pass --install-base DIR'.format(base))
+        if underlays is None:
+            underlays = _default_underlays(self.base, os.environ if environ is None else environ)
+        self.bases = [self.base]
+        for underlay in underlays:
+            underlay = Path(underlay).absolute()
+            if underlay.is_dir() and underlay not in self.bases:
+                self.bases.append(underlay)
+
+    @property
+    def underlays(self):
+        """Return the underlays' install bases, highest priority first."""
+        return self.bases[1:]
 
     def packages(self):
         """Return ``{name: Package}``, scanned anew on each call (rebuilds show)."""
         found = {}
-        merged_index = self.base / 'share' / 'colcon-core' / 'packages'
-        if merged_index.is_dir():
-            for marker in merged_index.iterdir():
-                found[marker.name] = Package(marker.name, self.base)
-        merged_share = self.base / 'share'
-        if merged_share.is_dir():
-            for manifest in merged_share.glob('*/colcon_wasm/manifest.json'):
-                name = manifest.parent.parent.name
-                found.setdefault(name, Package(name, self.base))
-        for child in sorted(self.base.iterdir()):
-            if child.name in found or not child.is_dir() or child.name == 'share':
-                continue
-            if (child / 'share' / child.name).is_dir():
-                found[child.name] = Package(child.name, child)
+        for base in reversed(self.bases):
+            found.update(_scan_base(base))
         return dict(sorted(found.items()))
 
     def package(self, name):
@@ -116,34 +169,62 @@ class InstallSpace:
         packages = self.packages()
         if name in packages:
             return packages[name]
+        where = "the install space '{}'".format(self.base)
+        if self.underlays:
+            where += ' nor its underlays ' + ', '.join(
+                "'{}'".format(u) for u in self.underlays)
         raise InstallSpaceError(
-            "package '{}' is not in the install space '{}' (it has: {}); build it with "
+            "package '{}' is not in {} ({}: {}); build it with "
             "'colcon build --wasm --packages-up-to {}'".format(
-                name, self.base, ', '.join(packages) or 'no packages', name))
+                name, where, 'they have' if self.underlays else 'it has',
+                ', '.join(packages) or 'no packages', name))
 
     def executable(self, package_name, name):
         """Return the Executable ``package_name/name`` or raise a clear error."""
+        found = self._effective_executables()
+        executable = found.get((package_name, name))
+        if executable is not None:
+            if not executable.js.is_file():
+                raise InstallSpaceError(
+                    "the manifest of '{}' lists '{}', but '{}' is missing; rebuild "
+                    'the package'.format(executable.package.name, name, executable.js))
+            return executable
         package = self.package(package_name)
-        if package.manifest is None:
+        if package.manifest is None and not any(p == package_name for p, _ in found):
             raise InstallSpaceError(
                 "package '{}' in '{}' has no colcon-wasm manifest ('{}'): it was not built "
                 "with 'colcon build --wasm', or it installs no executables".format(
-                    package_name, self.base, package.manifest_path))
-        executables = package.executables()
-        for executable in executables:
-            if executable.name == name:
-                if not executable.js.is_file():
-                    raise InstallSpaceError(
-                        "the manifest of '{}' lists '{}', but '{}' is missing; rebuild "
-                        'the package'.format(package_name, name, executable.js))
-                return executable
+                    package_name, package.prefix, package.manifest_path))
+        names = sorted(n for p, n in found if p == package_name)
         raise InstallSpaceError(
             "package '{}' has no executable '{}' (it has: {})".format(
-                package_name, name, ', '.join(e.name for e in executables) or 'none'))
+                package_name, name, ', '.join(names) or 'none'))
 
     def executables(self):
-        """Return every Executable of every manifest, by package."""
-        return [e for p in self.packages().values() for e in p.executables()]
+        """Return every Executable, by package (what ``ros2 run`` would find)."""
+        found = self._effective_executables()
+        return [found[key] for key in sorted(found)]
+
+    def _effective_executables(self):
+        """
+        Map ``(package, executable)`` to the Executable that runs.
+
+        Bases are read lowest priority first, so an overlay's executable
+        replaces an underlay's; in one base an executable a package installs
+        for another one (``"package"`` in its manifest entry) replaces that
+        package's own.
+        """
+        found = {}
+        for base in reversed(self.bases):
+            packages = _scan_base(base)
+            own, provided = [], []
+            for package in packages.values():
+                for executable in package.executables():
+                    (own if executable.package_name == package.name else provided).append(
+                        executable)
+            for executable in own + provided:
+                found[(executable.package_name, executable.name)] = executable
+        return found
 
     def type_description_files(self):
         """Return the types.json files of all packages."""

@@ -88,7 +88,7 @@ class Plugin:
 
 
 def _plugin_description_files(prefix, content):
-    """The plugin XML files an index entry names (one relative path per line)."""
+    """Get the plugin XML files an index entry names (one path per line)."""
     files = []
     for line in content.splitlines():
         line = line.strip()

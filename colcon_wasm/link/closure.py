@@ -109,6 +109,6 @@ def read_closure(path, bases):
                 f"needs '{entry.get('absolute') or entry.get('base_path')}', which is "
                 'in none of the install bases ' + ', '.join(bases) +
                 f" (closure '{path}'): build the package that installs it, or "
-                'rebuild the library\'s package')
+                "rebuild the library's package")
         archives.append(found)
     return archives, list(data.get('link_flags', []))

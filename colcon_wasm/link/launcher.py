@@ -29,20 +29,17 @@ if __package__ in (None, ''):
     from colcon_wasm.link import ament_index  # noqa: E402
     from colcon_wasm.link import archive  # noqa: E402
     from colcon_wasm.link import closure  # noqa: E402
+    from colcon_wasm.link import report as link_report  # noqa: E402
     from colcon_wasm.link import symbols  # noqa: E402
 else:
     from colcon_wasm.link import ament_index
     from colcon_wasm.link import archive
     from colcon_wasm.link import closure
+    from colcon_wasm.link import report as link_report
     from colcon_wasm.link import symbols
 
 """Outputs that make a link command an executable link."""
 EXECUTABLE_SUFFIXES = ('.js', '.mjs', '.html', '.wasm')
-
-"""Suffix of the link report written next to an executable."""
-REPORT_SUFFIX = '.colcon_wasm_link.json'
-
-REPORT_SCHEMA = 1
 
 USAGE = ('usage: launcher.py --cache DIR --nm LLVM_NM --cxxfilt LLVM_CXXFILT '
          '[--bases B1:B2...] [--capture FILE --package PKG --build-dir DIR '
@@ -147,6 +144,7 @@ class LinkPlan:
         self._seen_archives = set()
         self._base_classes = set()
         self._prefixes = None
+        self.hosts_components = False
 
     def prefixes(self):
         """Get the package prefixes of the install chain (once)."""
@@ -165,7 +163,8 @@ class LinkPlan:
                 fixed |= record.fixed_components
                 pluginlib_symbols += record.pluginlib
         pending = list(self.link.archives)
-        if hosts_components and not fixed:
+        self.hosts_components = hosts_components and not fixed
+        if self.hosts_components:
             pending += self._component_archives()
         registration_symbols = {}
         while pending or pluginlib_symbols:
@@ -229,7 +228,7 @@ class LinkPlan:
             self.registrations[library] = classes
 
     def _plugin_archives(self, pluginlib_symbols):
-        """Archives of the plugins of every base class pluginlib loads here."""
+        """Get the archives of the plugins of every base class pluginlib loads."""
         try:
             names = symbols.demangle(self.options['--cxxfilt'], pluginlib_symbols)
         except (OSError, subprocess.CalledProcessError) as e:
@@ -263,6 +262,8 @@ class LinkPlan:
     def _component_archives(self):
         archives = []
         for component in ament_index.components(self.prefixes()):
+            if component.to_json() in self.components:
+                continue  # registered twice (register_nodes and register_node)
             found = self._closure(component.package, component.library,
                                   f"component '{component.class_name}'")
             if found is not None:
@@ -297,7 +298,7 @@ class LinkPlan:
         return None
 
     def linked_archives(self):
-        """Every archive of the final link line, in order."""
+        """Get every archive of the final link line, in order."""
         return self.link.archives + self.extra_archives
 
     def table_object(self):
@@ -327,14 +328,22 @@ class LinkPlan:
 
     def report(self):
         """Describe what was linked (read by the post-processing)."""
+        base_classes = sorted(self._base_classes)
         return {
-            'schema': REPORT_SCHEMA,
+            'schema': link_report.REPORT_SCHEMA,
+            'inputs': {
+                'archives': link_report.file_stamps(self.extra_archives),
+                'plugin_base_classes': base_classes,
+                'hosts_components': self.hosts_components,
+                'index': link_report.index_fingerprint(
+                    self.prefixes(), base_classes, self.hosts_components),
+            },
             'libraries': [os.path.basename(a) for a in self.linked_archives()],
             'registrations': [
                 {'library': library, 'class': derived, 'base': base}
                 for library, classes in sorted(self.registrations.items())
                 for derived, base in classes],
-            'plugin_base_classes': sorted(self._base_classes),
+            'plugin_base_classes': base_classes,
             'plugins': self.plugins,
             'components': self.components,
             'warnings': self.warnings,
@@ -398,7 +407,7 @@ def main(argv=None):
     first_object = next((i for i, a in enumerate(command)
                          if a in link.objects or a.startswith('@')), len(command))
     final = command[:first_object] + added + command[first_object:] + plan.extra_archives
-    with open(link.output + REPORT_SUFFIX, 'w') as handle:
+    with open(link.output + link_report.REPORT_SUFFIX, 'w') as handle:
         json.dump(plan.report(), handle, indent=1)
         handle.write('\n')
     sys.stdout.flush()

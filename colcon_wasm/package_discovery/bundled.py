@@ -8,6 +8,7 @@ from colcon_core.package_discovery import PackageDiscoveryExtensionPoint
 from colcon_core.package_identification import identify
 from colcon_core.plugin_system import satisfies_version
 from colcon_wasm import resources
+from colcon_wasm.underlay import get_underlays
 
 logger = colcon_logger.getChild(__name__)
 
@@ -44,10 +45,21 @@ class BundledPackageDiscovery(PackageDiscoveryExtensionPoint):
     def discover(self, *, args, identification_extensions):  # noqa: D102
         if not getattr(args, 'wasm', False):
             return set()
+        underlays = get_underlays(args)
+        installed = {}
+        for underlay in reversed(underlays):
+            installed.update({name: underlay for name in underlay.packages()})
         descriptors = set()
         for path in bundled_package_paths():
             result = identify(identification_extensions, str(path))
             if not result or result is True:
+                continue
+            if result.name in installed:
+                # the middleware comes from the underlay, as rmw_fastrtps_cpp
+                # comes from /opt/ros/humble for a native overlay
+                logger.info(
+                    f"Using '{result.name}' of the underlay "
+                    f"'{installed[result.name].base}' (not the bundled copy)")
                 continue
             result.metadata[BUNDLED_KEY] = True
             logger.debug(

@@ -34,6 +34,11 @@ from colcon_wasm.plan import BuildPlan
 from colcon_wasm.plan import PLAN_KEY
 from colcon_wasm.recipe import load_recipe
 from colcon_wasm.toolchain import find_emscripten
+from colcon_wasm.underlay import get_underlays
+from colcon_wasm.underlay import PREFIX_PATH_VARIABLE
+from colcon_wasm.underlay import split_native_prefixes
+from colcon_wasm.underlay import underlay_environment
+from colcon_wasm.underlay import write_marker
 
 logger = colcon_logger.getChild(__name__)
 
@@ -53,6 +58,9 @@ HOST_TOOL_TYPES = ('wasm.host.python', 'wasm.host.ros.ament_python')
 
 """Dependency categories that must be buildable (tests are off)."""
 NEEDED_CATEGORIES = ('build', 'run')
+
+"""The bundled package that builds rclcpp_components' stock containers again."""
+CONTAINERS_PACKAGE = 'colcon_wasm_component_containers'
 
 """Marker in a CMake cache written by a colcon-wasm configure."""
 WASM_CACHE_MARKER = 'COLCON_WASM_EMSCRIPTEN_ROOT:'
@@ -74,6 +82,39 @@ def get_recipe(args):
             raise SystemExit(exit_message(e)) from e
         setattr(args, _RECIPE_ATTR, recipe)
     return recipe
+
+
+def prepare_underlays(args, emscripten):
+    """
+    Make the underlays visible to this build, and only them.
+
+    Native prefixes (a sourced /opt/ros/humble) are dropped from the build
+    variables, the underlays' colcon scripts are sourced into this process,
+    and the install base is marked as a `--wasm` one.
+
+    :returns: the :class:`colcon_wasm.underlay.Underlay` list
+    """
+    underlays = get_underlays(args)
+    kept, removed = split_native_prefixes(os.environ)
+    if removed:
+        os.environ.update(kept)
+        logger.warning(
+            'Ignoring native prefixes for this --wasm build (their libraries are not '
+            'WebAssembly): ' + ', '.join(sorted({e for _, e in removed})) + '; '
+            '--wasm builds stand on --wasm underlays only (source an install_wasm/'
+            f'setup.sh, which sets {PREFIX_PATH_VARIABLE}, or pass --wasm-underlay)')
+    try:
+        os.environ.update(underlay_environment(underlays, os.environ))
+    except ColconWasmError as e:
+        raise SystemExit(exit_message(e)) from e
+    for underlay in underlays:
+        logger.info(f"Using the --wasm underlay '{underlay.base}' ({underlay.source})")
+    write_marker(
+        Path(getattr(args, 'install_base', None) or 'install_wasm').absolute(),
+        emscripten=emscripten.describe(),
+        pthread=not getattr(args, 'wasm_no_pthread', False),
+        underlays=[u.base for u in underlays], recipe=get_recipe(args).describe())
+    return underlays
 
 
 def _is_build_verb(args):
@@ -232,8 +273,9 @@ class WasmPackageSelection(PackageSelectionExtensionPoint):
             return
         get_recipe(args)
         if _is_build_verb(args):
-            setattr(args, '_colcon_wasm_emscripten',
-                    prepare_environment(args))
+            emscripten = prepare_environment(args)
+            setattr(args, '_colcon_wasm_emscripten', emscripten)
+            prepare_underlays(args, emscripten)
 
     def select_packages(self, *, args, decorators):  # noqa: D102
         if not getattr(args, 'wasm', False):
@@ -249,6 +291,7 @@ class WasmPackageSelection(PackageSelectionExtensionPoint):
                 left_out.add(decorator.descriptor.name)
         _check_skipped_dependencies(decorators, recipe)
         _forget_left_out(decorators, left_out)
+        _schedule_component_containers(args, decorators)
         _trim_unused_bundled(decorators)
         emscripten = getattr(args, '_colcon_wasm_emscripten', None)
         settings = WasmSettings(args)
@@ -266,7 +309,8 @@ class WasmPackageSelection(PackageSelectionExtensionPoint):
             pkg.metadata[PLAN_KEY] = BuildPlan(
                 original_type=pkg.type, recipe=recipe,
                 rule=recipe.rule(pkg.name), emscripten=emscripten,
-                settings=settings, host_tool=pkg.type not in WASM_TYPES)
+                settings=settings, host_tool=pkg.type not in WASM_TYPES,
+                underlays=[u.base for u in get_underlays(args)])
             pkg.type = wasm_type
 
 
@@ -365,6 +409,39 @@ def _check_skipped_dependencies(decorators, recipe):
             "{drop-depends: [DEP]}}'):\n" + '\n'.join(problems))))
 
 
+def _schedule_component_containers(args, decorators):
+    """
+    Build the stock component containers after every package with components.
+
+    rclcpp_components' containers load components with dlopen natively;
+    here they are linked again, from rclcpp_components' own sources, after
+    every selected package that depends on rclcpp_components (and may
+    register components), so that they host all of them. `--packages-skip
+    colcon_wasm_component_containers` keeps the containers as they are.
+    """
+    containers = next(
+        (d for d in decorators if d.descriptor.name == CONTAINERS_PACKAGE), None)
+    if containers is None or not is_bundled(containers.descriptor):
+        return
+    hosts = [
+        d for d in decorators
+        if d.selected and d is not containers and 'rclcpp_components' in {
+            str(dep) for dep in d.descriptor.dependencies.get('build', ())}]
+    skipped = CONTAINERS_PACKAGE in (getattr(args, 'packages_skip', None) or [])
+    if not hosts or skipped:
+        containers.selected = False
+        return
+    names = sorted(d.descriptor.name for d in hosts)
+    logger.info(
+        f"Building '{CONTAINERS_PACKAGE}' (rclcpp_components' component_container, "
+        '_mt and _isolated, hosting every component) after: ' + ', '.join(names))
+    containers.selected = True
+    containers.descriptor.dependencies.setdefault('build', set()).update(
+        DependencyDescriptor(n) for n in names)
+    _extend_recursive_dependencies(decorators, {CONTAINERS_PACKAGE: set(names)})
+    decorators[:] = topological_order_decorators(decorators)
+
+
 def _trim_unused_bundled(decorators):
     """Build bundled packages only when a selected package needs them."""
     selected = [d for d in decorators if d.selected]
@@ -374,7 +451,8 @@ def _trim_unused_bundled(decorators):
                  for d in selected}
     needed = set()
     for decorator in selected:
-        if not is_bundled(decorator.descriptor):
+        if not is_bundled(decorator.descriptor) or \
+                decorator.descriptor.name == CONTAINERS_PACKAGE:
             needed |= recursive[decorator.descriptor.name]
     pending = list(needed)
     while pending:
@@ -384,7 +462,7 @@ def _trim_unused_bundled(decorators):
                 pending.append(dep)
     for decorator in selected:
         pkg = decorator.descriptor
-        if is_bundled(pkg) and pkg.name not in needed:
+        if is_bundled(pkg) and pkg.name not in needed and pkg.name != CONTAINERS_PACKAGE:
             logger.info(
                 f"Skipping bundled package '{pkg.name}': no selected package "
                 'depends on it')

@@ -13,6 +13,7 @@ from colcon_core.task import get_task_extension
 from colcon_core.task import TaskExtensionPoint
 from colcon_wasm.error import ColconWasmError
 from colcon_wasm.error import exit_message
+from colcon_wasm.link.report import stale_links
 from colcon_wasm.options import cmake_arguments
 from colcon_wasm.patch import prepare_patched_source
 from colcon_wasm.plan import PLAN_KEY
@@ -21,6 +22,7 @@ from colcon_wasm.task.stamp import build_inputs
 from colcon_wasm.task.stamp import is_up_to_date
 from colcon_wasm.task.stamp import remove_stamp
 from colcon_wasm.task.stamp import write_stamp
+from colcon_wasm.underlay import underlay_stamps
 
 logger = colcon_logger.getChild(__name__)
 
@@ -87,13 +89,15 @@ class WasmBuildTask(TaskExtensionPoint):
             emscripten=plan.emscripten, settings=plan.settings,
             install_base=self._install_base(args), rule=plan.rule,
             project_name=pkg.name,
-            build_base=Path(args.build_base).parent) + \
+            build_base=Path(args.build_base).parent,
+            underlays=plan.underlays) + \
             list(args.cmake_args or [])
         patches = self._patches(pkg, plan)
         inputs = build_inputs(
             args=args, source=Path(args.path), patches=patches,
             settings={'wasm': plan.settings.describe([]),
-                      'emscripten': plan.emscripten.describe()},
+                      'emscripten': plan.emscripten.describe(),
+                      'underlays': underlay_stamps(plan.underlays)},
             dependencies=self.context.dependencies)
         if self._up_to_date(inputs):
             return 0
@@ -104,6 +108,7 @@ class WasmBuildTask(TaskExtensionPoint):
             logger.error(exit_message(e))
             return 1
         self._clean_cache_on_new_settings(args, plan)
+        self._relink_stale_executables(args, plan)
 
         stock.set_context(context=self.context)
         rc = await stock.build()
@@ -214,6 +219,24 @@ class WasmBuildTask(TaskExtensionPoint):
             args.cmake_clean_cache = True
             path.parent.mkdir(parents=True, exist_ok=True)
             path.write_text(json.dumps(settings, indent=2) + '\n')
+
+    def _relink_stale_executables(self, args, plan):
+        """
+        Make CMake link again the executables whose added link inputs changed.
+
+        The plugins and components the link launcher adds are not CMake's
+        inputs (colcon_wasm/link/report.py): removing the output is how CMake
+        learns that the executable must be linked again.
+        """
+        bases = [self._install_base(args)] + [str(u) for u in plan.underlays]
+        for output, reason in stale_links(args.build_base, bases):
+            logger.info(
+                f"Linking '{Path(output).name}' of '{self.context.pkg.name}' again: "
+                f'{reason}')
+            stem = output[:-len('.js')] if output.endswith('.js') else output
+            for path in (output, stem + '.wasm', stem + '.worker.js'):
+                if Path(path).exists():
+                    Path(path).unlink()
 
     def _install_base(self, args):
         """Get the install base shared by all packages."""

@@ -67,9 +67,11 @@ def data_digest():
         digest = hashlib.sha256()
         folders = [resources.path(parts[0]).joinpath(*parts[1:])
                    for parts in DATA_INPUTS]
-        files = [Path(__file__).resolve().parents[1] / name for name in (
+        package = Path(__file__).resolve().parents[1]
+        files = [package / name for name in (
             'compile_launcher.py', 'postprocess.py', 'glue.py',
             'typedesc.py')]
+        files += sorted((package / 'link').glob('*.py'))
         for folder in folders:
             files += sorted(p for p in folder.rglob('*') if p.is_file())
         for path in files:
