@@ -389,18 +389,43 @@ def _dependency_names(pkg):
 
 
 def _check_skipped_dependencies(decorators, recipe):
+    """
+    Refuse a selected package that needs a package --wasm skips to build.
+
+    Allowed, with a note: dependencies the recipe lets the package drop
+    (`drop-depends`), dependencies only the package's Python part needs
+    (`python-only` skips: rclpy, python_cmake_module), and run-only
+    dependencies (a metapackage's members, a launch file's nodes), which are
+    simply not there at run time.
+    """
     problems = []
     for decorator in decorators:
         pkg = decorator.descriptor
         if not decorator.selected or pkg.type not in WASM_TYPES:
             continue
         allowed = set(recipe.rule(pkg.name).drop_depends)
-        for dep in sorted(_dependency_names(pkg)):
-            reason = recipe.skip_reason(dep)
-            if reason and dep not in allowed:
-                problems.append(
-                    f"  package '{pkg.name}' depends on '{dep}', which "
-                    f'--wasm skips ({reason})')
+        build = {str(d) for d in pkg.dependencies.get('build', ())}
+        skipped = {d for d in _dependency_names(pkg) if recipe.skip_reason(d)}
+        python_parts = sorted(
+            d for d in skipped if d not in allowed and recipe.is_python_only(d))
+        if python_parts:
+            logger.info(
+                f"Building '{pkg.name}' without "
+                + ', '.join(f"'{d}'" for d in python_parts)
+                + ': only its Python part needs them, and Python code is not '
+                'built for WebAssembly (the C/C++ part is)')
+            allowed |= set(python_parts)
+        run_only = sorted(d for d in skipped - allowed if d not in build)
+        if run_only:
+            logger.info(
+                f"'{pkg.name}' runs with "
+                + ', '.join(f"'{d}' ({recipe.skip_reason(d)})" for d in run_only)
+                + ', which --wasm does not build: they are not there at run time')
+            allowed |= set(run_only)
+        for dep in sorted(skipped - allowed):
+            problems.append(
+                f"  package '{pkg.name}' needs '{dep}' to build, which "
+                f'--wasm skips ({recipe.skip_reason(dep)})')
     if problems:
         raise SystemExit(exit_message(ColconWasmError(
             f'{len(problems)} dependencies on packages that --wasm skips '

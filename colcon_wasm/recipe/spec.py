@@ -13,12 +13,13 @@ from pathlib import Path
 import re
 
 from colcon_wasm.error import ColconWasmError
+from colcon_wasm.recipe import system
 from colcon_wasm.recipe.yaml_lines import LineDict
 from packaging.specifiers import InvalidSpecifier
 from packaging.specifiers import SpecifierSet
 
 TOP_LEVEL_KEYS = (
-    'recipe', 'env', 'skip', 'unskip', 'host-tools', 'packages')
+    'recipe', 'env', 'skip', 'unskip', 'host-tools', 'system', 'packages')
 RECIPE_KEYS = ('name', 'version', 'ros-distro')
 PACKAGE_KEYS = (
     'cmake-args', 'env', 'patches', 'depends', 'drop-depends',
@@ -105,7 +106,9 @@ class Recipe:
         self.files = []
         self.env = {}
         self.skip = {}
+        self.python_only = set()
         self.host_tools = []
+        self.system = system.SystemRules()
         self.packages = {}
 
     def skip_reason(self, name):
@@ -121,6 +124,18 @@ class Recipe:
             if fnmatchcase(name, pattern):
                 return reason
         return None
+
+    def is_python_only(self, name):
+        """
+        Check if a skipped package is one only Python code needs.
+
+        A C/C++ package that depends on it (for its Python part: rclpy,
+        python_cmake_module) is built without that dependency.
+        """
+        if self.skip_reason(name) is None:
+            return False
+        return name in self.python_only or any(
+            fnmatchcase(name, p) for p in self.python_only)
 
     def rule(self, name):
         """Get the rule of a package (an empty one when none is given)."""
@@ -143,7 +158,14 @@ class Recipe:
         self.env.update(overlay.get('env') or {})
         for name in overlay.get('unskip') or []:
             self.skip.pop(name, None)
-        self.skip.update(overlay.get('skip') or {})
+            self.python_only.discard(name)
+        for name, (reason, python_only) in (overlay.get('skip') or {}).items():
+            self.skip[name] = reason
+            if python_only:
+                self.python_only.add(name)
+            else:
+                self.python_only.discard(name)
+        self.system.update(overlay.get('system') or {})
         for name in overlay.get('host-tools') or []:
             if name not in self.host_tools:
                 self.host_tools.append(name)
@@ -247,12 +269,85 @@ def _check_skip_section(path, data):
     skip = {}
     for name, reason in value.items():
         _check_package_name(path, value, name, f'skip.{name}', name)
+        python_only = False
         if isinstance(reason, dict):
-            _check_keys(path, reason, f'skip.{name}.', ('reason',))
-            reason = reason.get('reason')
+            entry = reason
+            _check_keys(path, entry, f'skip.{name}.', ('reason', 'python-only'))
+            reason = entry.get('reason')
+            python_only = entry.get('python-only', False)
+            if not isinstance(python_only, bool):
+                _fail(path, entry, 'python-only', f'skip.{name}.python-only',
+                      f'expected true or false, got {_describe(python_only)}')
         _check_string(path, value, name, f'skip.{name}', reason)
-        skip[name] = reason
+        skip[name] = (reason, python_only)
     return skip
+
+
+def _check_system_entry(path, section, key, value):
+    dotted = f'system.{key}'
+    _check_mapping(path, section, key, dotted, value)
+    _check_keys(path, value, f'{dotted}.', system.SYSTEM_KEYS)
+    kinds = [k for k in system.KINDS if k in value]
+    if len(kinds) != 1:
+        _fail(path, section, key, dotted,
+              'expected exactly one of ' + ', '.join(system.KINDS)
+              + (f", got {', '.join(kinds)}" if kinds else ''))
+    kind = kinds[0]
+    rule = system.SystemRule(key, kind, origin=_where(path, section, key))
+    item = value[kind]
+    if kind == 'workspace':
+        rule.workspace = _check_package_name(
+            path, value, kind, f'{dotted}.{kind}', item)
+    elif kind in ('host-tool', 'builtin'):
+        rule.reason = _check_string(path, value, kind, f'{dotted}.{kind}', item)
+    elif kind == 'host-headers':
+        _check_mapping(path, value, kind, f'{dotted}.{kind}', item)
+        _check_keys(path, item, f'{dotted}.{kind}.', system.HOST_HEADERS_KEYS)
+        if 'check' not in item:
+            _fail(path, value, kind, f'{dotted}.{kind}',
+                  "missing key 'check' (a file the host must have)")
+        rule.check = _check_string(path, item, 'check', f'{dotted}.{kind}.check',
+                                   item['check'])
+        if 'cmake-args' in item:
+            rule.cmake_args = _check_string_list(
+                path, item, 'cmake-args', f'{dotted}.{kind}.cmake-args', item['cmake-args'])
+    else:  # debian-source
+        _check_mapping(path, value, kind, f'{dotted}.{kind}', item)
+        _check_keys(path, item, f'{dotted}.{kind}.', system.DEBIAN_SOURCE_KEYS)
+        if 'package' not in item:
+            _fail(path, value, kind, f'{dotted}.{kind}',
+                  "missing key 'package' (Debian's source package)")
+        rule.source_package = _check_package_name(
+            path, item, 'package', f'{dotted}.{kind}.package', item['package'])
+        if 'version' in item:
+            rule.source_version = _check_string(
+                path, item, 'version', f'{dotted}.{kind}.version', str(item['version']))
+        if 'build' in item:
+            build = _check_string(path, item, 'build', f'{dotted}.{kind}.build',
+                                  item['build'])
+            build_file = (path.parent / build).resolve()
+            if not build_file.is_file():
+                _fail(path, item, 'build', f'{dotted}.{kind}.build',
+                      f"CMake file '{build_file}' does not exist")
+            rule.build_file = build_file
+        if 'cmake-args' in item:
+            rule.cmake_args = _check_string_list(
+                path, item, 'cmake-args', f'{dotted}.{kind}.cmake-args', item['cmake-args'])
+    for extra in ('debian', 'note'):
+        if extra in value:
+            setattr(rule, extra, _check_string(
+                path, value, extra, f'{dotted}.{extra}', value[extra]))
+    return rule
+
+
+def _check_system_section(path, data):
+    value = data['system']
+    _check_mapping(path, data, 'system', 'system', value)
+    rules = {}
+    for key, entry in value.items():
+        _check_package_name(path, value, key, f'system.{key}', str(key))
+        rules[key] = _check_system_entry(path, value, key, entry)
+    return rules
 
 
 def _check_patch(path, patches, index, dotted, item):
@@ -357,6 +452,8 @@ def check_recipe_data(path, data):
         checked['env'] = _check_env(path, data, 'env', 'env', data['env'])
     if 'skip' in data:
         checked['skip'] = _check_skip_section(path, data)
+    if 'system' in data:
+        checked['system'] = _check_system_section(path, data)
     for key in ('unskip', 'host-tools'):
         if key in data:
             items = _check_string_list(path, data, key, key, data[key])
