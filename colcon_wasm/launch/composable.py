@@ -195,18 +195,19 @@ class ComposableNode:
 
         :param namespace: the absolute namespace, or None for the node's own
         :param remappings: ``[(from, to)]``
-        :param parameters: ``[(name, value)]`` in order (a later one wins)
-        :param extra_arguments: ``[(name, value)]``, e.g. use_intra_process_comms
+        :param parameters: ``[(name, value, (file, line))]`` in order (a later one wins)
+        :param extra_arguments: the same, e.g. use_intra_process_comms
+        :raises LaunchError: for a value that is no parameter type, at its line
         """
         self.package = package
         self.plugin = plugin
         self.name = name
         self.namespace = namespace
         self.remappings = list(remappings)
-        self.parameters = [parameter_message(n, v, where) for n, v in parameters]
-        self.extra_arguments = [parameter_message(n, v, where) for n, v in extra_arguments]
-        self.raw_parameters = list(parameters)
-        self.raw_extra_arguments = list(extra_arguments)
+        self.parameters = [parameter_message(*p) for p in parameters]
+        self.extra_arguments = [parameter_message(*a) for a in extra_arguments]
+        self._values = [(n, v) for n, v, _ in parameters]
+        self._extra_values = [(n, v) for n, v, _ in extra_arguments]
         self.where = where
 
     def request(self):
@@ -230,9 +231,9 @@ class ComposableNode:
         words += ['-r', '__node:={}'.format(self.name)]
         if self.namespace:
             words += ['-r', '__ns:={}'.format(self.namespace)]
-        for name, value in self.raw_parameters:
+        for name, value in self._values:
             words += ['-p', '{}:={}'.format(name, yaml_value(value))]
-        for name, value in self.raw_extra_arguments:
+        for name, value in self._extra_values:
             words += ['-e', '{}:={}'.format(name, yaml_value(value))]
         return ' '.join(words)
 
@@ -240,7 +241,8 @@ class ComposableNode:
 class LoadComposableNodes:
     """Composable nodes to load, in order, into one container."""
 
-    def __init__(self, target, nodes, *, containers=(), where=(None, None)):
+    def __init__(self, target, nodes, *, containers=(), kind='load_composable_node',
+                 where=(None, None)):
         """
         Describe one ``load_composable_node`` (or the nodes of a ``node_container``).
 
@@ -248,12 +250,14 @@ class LoadComposableNodes:
           relative name is resolved in ``/``, as launch_ros' own node does)
         :param containers: the NodeProcesses of this launch with that name:
           when they all exit before the service appears, the load fails at once
+        :param kind: the tag, for messages
         """
         self.target = target
         self.service = '{}/_container/load_node'.format(
             target if target.startswith('/') else '/' + target)
         self.nodes = list(nodes)
         self.containers = list(containers)
+        self.kind = kind
         self.where = where
 
     @property
@@ -269,6 +273,6 @@ class LoadComposableNodes:
             'service': self.service,
             'type': LOAD_NODE_TYPE,
             'containers': [p.label for p in self.containers],
-            'where': '{}:{}'.format(file, line) if file is not None else None,
+            'where': '<{}> at {}:{}'.format(self.kind, file, line) if file is not None else None,
             'requests': [node.request() for node in self.nodes],
         }

@@ -253,7 +253,8 @@ class Loader:
                  if self._condition(child, context)]
         if nodes:
             self.loads.append(LoadComposableNodes(
-                process.node_name, nodes, containers=[process], where=entity.where))
+                process.node_name, nodes, containers=[process], kind=entity.kind,
+                where=entity.where))
 
     def _load_composable_node(self, entity, context):
         """Load composable nodes into a container of this launch, or one running already."""
@@ -289,9 +290,11 @@ class Loader:
         for param in entity.get_list('param'):
             for item in self._parameter_items(param, context, prefix=''):
                 if isinstance(item, Path):
-                    parameters += file_parameters(item, name, namespace, param.where_of('from'))
+                    where = param.where_of('from')
+                    parameters += [(n, v, where) for n, v in file_parameters(
+                        item, name, namespace, where)]
                 else:
-                    parameters.append(item[:2])
+                    parameters.append(item)
         extra_arguments = []
         for argument in entity.get_list('extra_arg'):
             arg_name = self._text(argument, 'name', context, optional=False)
@@ -303,7 +306,7 @@ class Loader:
                     'ros2 launch reads it'.format(arg_name, yaml_value(value)), *where)
             extra_arguments.append(
                 (arg_name, extra_argument_value(substitute(value, context, where), arg_name,
-                                                where)))
+                                                where), where))
             argument.check_complete()
         entity.check_complete()
         return ComposableNode(package, plugin, name, namespace=namespace,
@@ -329,11 +332,11 @@ class Loader:
             if isinstance(item, Path):
                 result += parameters_from_file(item, node_name, param.where_of('from'))
             else:
-                result.append((item[0], yaml_value(item[1]), None))
+                result.append((item[0], yaml_value(item[1]), None))  # node-wide -p
         return result
 
     def _parameter_items(self, param, context, prefix):
-        """Return the typed ``(name, value)`` of one <param>, or the Path it reads them from."""
+        """Return the typed ``(name, value, where)`` of one <param>, or its file's Path."""
         source = param.get('from')
         name = param.get('name')
         where = param.where
@@ -368,7 +371,7 @@ class Loader:
         typed = parameter_value(value, value_type, separator, context,
                                 param.where_of('value'), full,
                                 typed_text=param.frontend == 'xml')
-        return [(full, typed)]
+        return [(full, typed, param.where_of('value'))]
 
 
 _TYPES = {'str': str, 'int': int, 'float': float, 'bool': bool}

@@ -82,15 +82,17 @@ export class ComposableLoader {
   }
 
   async _loadGroup(group) {
+    try {
+      await this._waitForService(group);
+    } catch (e) {
+      if (e instanceof Abandoned) return this._abandon(group);
+      for (const request of group.requests) this._fail(group, request, e.message);
+      return false;
+    }
     let ok = true;
-    let waited = false;
     for (const request of group.requests) {
+      if (this._stopping) return this._abandon(group) && ok;
       try {
-        if (!waited) {
-          await this._waitForService(group);
-          waited = true;
-        }
-        if (this._stopping) throw new Abandoned();
         const response = await this._call(group, request);
         if (response.success) {
           this._out(`[INFO] [${LOGGER}]: Loaded node '${response.full_node_name}' in container '${group.target}'`);
@@ -98,15 +100,17 @@ export class ComposableLoader {
         }
         this._fail(group, request, response.error_message, response.full_node_name);
       } catch (e) {
-        if (e instanceof Abandoned) {
-          this._err(`[WARNING] [${LOGGER}]: Abandoning wait for the '${group.service}' service, due to shutdown.`);
-          return ok;
-        }
+        if (e instanceof Abandoned) return this._abandon(group) && ok;
         this._fail(group, request, e.message);
       }
       ok = false;
     }
     return ok;
+  }
+
+  _abandon(group) {
+    this._err(`[WARNING] [${LOGGER}]: Abandoning wait for the '${group.service}' service, due to shutdown.`);
+    return true;
   }
 
   _fail(group, request, why, fullName) {
@@ -136,9 +140,9 @@ export class ComposableLoader {
       };
       const seconds = this._timeoutMs / 1000;
       timer = setTimeout(() => finish(reject, new Error(
-        `the service '${group.service}' did not appear within ${seconds} s: is '${group.target}' a `
-        + `component container of this launch${group.where ? ` (${group.where})` : ''}? `
-        + '--load-timeout S waits longer')), this._timeoutMs);
+        `the service '${group.service}' did not appear within ${seconds} s`
+        + `${group.where ? ` (${group.where})` : ''}: is '${group.target}' a running `
+        + 'component container? --load-timeout S waits longer')), this._timeoutMs);
       this._checks.add(check);
       unsubscribe = this._runtime.onGraphChange(check);
       check();
