@@ -207,13 +207,21 @@ def test_conditions_and_a_container_of_another_launch(tmp_path):
             <composable_node pkg="p" plugin="p::A" name="a" if="false"/>
             <composable_node pkg="p" plugin="p::B" name="b"/>
           </load_composable_node>
+          <load_composable_node target="/cell/box">
+            <composable_node pkg="p" plugin="p::C" name="c"/>
+          </load_composable_node>
+          <node pkg="rclcpp_components" exec="component_container" name="box" namespace="cell"/>
         </launch>
     """)
-    load, = load_launch_file(path).loads
-    assert (load.target, load.service, load.containers) == (
+    plan = load_launch_file(path)
+    other, here = plan.loads
+    assert (other.target, other.service, other.containers) == (
         'elsewhere/box', '/elsewhere/box/_container/load_node', [])
-    assert [n.name for n in load.nodes] == ['b']
-    assert load.to_json()['requests'][0]['node_namespace'] == ''
+    assert [n.name for n in other.nodes] == ['b']
+    assert other.to_json()['requests'][0]['node_namespace'] == ''
+    # a plain <node> of this launch with the target's name is the container too
+    assert here.containers == plan.processes
+    assert here.to_json()['containers'] == ['component_container-1']
 
 
 def test_print_plan_shows_the_loads(tmp_path, capsys):

@@ -65,7 +65,7 @@ export class ComposableLoader {
    */
   load(group) {
     const previous = this._queues.get(group.service) || Promise.resolve();
-    const run = previous.then(() => this._loadGroup(group));
+    const run = previous.catch(() => {}).then(() => this._loadGroup(group));
     this._queues.set(group.service, run);
     return run;
   }
