@@ -425,7 +425,7 @@ def test_xml_container_loads_both_components_with_names_remaps_and_parameters(
     assert re.search(r'\[read_talker\]: PARAM use_sim_time=true$', err, re.MULTILINE), err
 
 
-def test_yaml_container_with_parameter_file_and_the_containers_own_parameters(
+def test_yaml_container_with_a_parameter_file_and_load_composable_node(
         install, tmp_path):
     _write(tmp_path / 'params.yaml', """
         /**:
