@@ -10,6 +10,7 @@ from colcon_wasm.launch import LaunchError
 from colcon_wasm.launch.command import execute
 from colcon_wasm.launch.command import make_plan
 from colcon_wasm.launch.install_space import InstallSpaceError
+from colcon_wasm.launch.runner import DEFAULT_LOAD_TIMEOUT
 
 
 def _positive(text):
@@ -41,6 +42,10 @@ class LaunchCommand(CliExtensionPoint):
     def add_arguments(self, *, parser):  # noqa: D102
         add_runtime_arguments(parser)
         parser.add_argument(
+            '--load-timeout', type=_positive, default=DEFAULT_LOAD_TIMEOUT, metavar='S',
+            help="How long to wait for a container's load_node service, and for each "
+                 'answer, before a composable node counts as failed (default: %(default)s)')
+        parser.add_argument(
             'what', nargs='+', metavar='ITEM',
             help='A launch file (.launch.xml/.launch.yaml) with name:=value arguments, '
                  'PKG FILE for a launch file of a package, or PKG/EXE items')
@@ -53,4 +58,4 @@ class LaunchCommand(CliExtensionPoint):
             return 1
         return execute(plan, install_base=args.install_base, duration=args.duration,
                        echo=args.echo, print_plan=args.print_plan,
-                       command='colcon-wasm launch')
+                       command='colcon-wasm launch', load_timeout=args.load_timeout)

@@ -5,7 +5,8 @@
 
 A plan is a list of processes (an executable of the install space and its
 argv with ``--ros-args -r ... -p ...``), read from an XML or YAML launch file
-(``load_launch_file``) or from ``PKG/EXE`` items (``plan_items``).
+(``load_launch_file``) or from ``PKG/EXE`` items (``plan_items``), and the
+composable nodes to load into containers (``composable``).
 """
 
 from colcon_wasm.launch.errors import LaunchError

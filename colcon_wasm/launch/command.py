@@ -12,6 +12,7 @@ from colcon_wasm.launch import plan_items
 from colcon_wasm.launch import split_launch_arguments
 from colcon_wasm.launch.install_space import InstallSpace
 from colcon_wasm.launch.install_space import InstallSpaceError
+from colcon_wasm.launch.runner import DEFAULT_LOAD_TIMEOUT
 from colcon_wasm.launch.runner import find_launch_file
 from colcon_wasm.launch.runner import host_plan
 from colcon_wasm.launch.runner import LAUNCH_FILE_SUFFIXES
@@ -51,11 +52,12 @@ def make_plan(values, install_base):
 
 
 def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, command,
-            out=None, err=None, stdin=False):
+            out=None, err=None, stdin=False, load_timeout=DEFAULT_LOAD_TIMEOUT):
     """
     Resolve a plan against the install space and run it in Node.js (or print it).
 
     With ``stdin`` the one process of the plan reads this process' standard input.
+    ``load_timeout`` (seconds) bounds each wait of a composable node load.
 
     :returns: the exit status (1 for bad input, else the Node host's)
     """
@@ -64,7 +66,7 @@ def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, com
     try:
         install_space = InstallSpace(install_base)
         description = host_plan(plan, install_space, duration=duration, echo=echo,
-                                stdin=stdin)
+                                stdin=stdin, load_timeout=load_timeout)
     except (LaunchError, InstallSpaceError) as e:
         print('{}: {}'.format(command, e), file=err)
         return 1
@@ -72,6 +74,10 @@ def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, com
         for process in description['processes']:
             print('[{}] {} {}'.format(process['label'], process['js'],
                                       ' '.join(process['args'])).rstrip(), file=out)
+        for load in plan.loads:
+            for node in load.nodes:
+                print('[load_node {}] {}'.format(load.container_name, node.describe()),
+                      file=out)
         return 0
     from colcon_wasm import resources
     from colcon_wasm.server import find_runtime

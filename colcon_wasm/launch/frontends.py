@@ -90,6 +90,9 @@ class Entity:
 # Tags whose child tags are sub-entities of the tag, not actions.
 _XML_LISTS = {
     'node': ('remap', 'param', 'env'),
+    'node_container': ('remap', 'param', 'env', 'composable_node'),
+    'composable_node': ('remap', 'param', 'extra_arg'),
+    'load_composable_node': ('composable_node',),
     'param': ('param',),
     'include': ('arg',),
     'arg': ('choice',),

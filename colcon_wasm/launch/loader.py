@@ -8,19 +8,26 @@ Supported, with the semantics of launch/launch_ros (Humble): ``arg`` (with
 ``exec``, ``name``, ``namespace``, ``args``, ``ros_args``, ``exec_name``,
 ``remap``, ``param`` with ``value``/nested ``param``/``from``, ``env``),
 ``group`` (``scoped``), ``push-ros-namespace``, ``include`` of XML/YAML
-files with ``arg``, and ``if``/``unless`` on each of them.  Anything else is
-an error that names the file and line, never silently skipped.
+files with ``arg``, ``node_container`` (a ``node`` with ``composable_node``
+children) and ``load_composable_node`` (``target``, ``composable_node``), and
+``if``/``unless`` on each of them.  Anything else is an error that names the
+file and line, never silently skipped.
 """
 
 from pathlib import Path
 import shlex
 
+from colcon_wasm.launch.composable import ComposableNode
+from colcon_wasm.launch.composable import extra_argument_value
+from colcon_wasm.launch.composable import file_parameters
+from colcon_wasm.launch.composable import LoadComposableNodes
 from colcon_wasm.launch.errors import LaunchError
 from colcon_wasm.launch.frontends import read_xml
 from colcon_wasm.launch.frontends import read_yaml
 from colcon_wasm.launch.plan import absolute_namespace
 from colcon_wasm.launch.plan import LaunchPlan
 from colcon_wasm.launch.plan import NodeProcess
+from colcon_wasm.launch.plan import validate_node_name
 from colcon_wasm.launch.plan import yaml_value
 from colcon_wasm.launch.substitutions import condition
 from colcon_wasm.launch.substitutions import Context
@@ -58,6 +65,7 @@ class Loader:
         self.install_space = install_space
         self.environ = environ
         self.processes = []
+        self.loads = []
         self.include_stack = []
 
     def _find_package(self, name, where):
@@ -75,7 +83,11 @@ class Loader:
         context = Context(configurations=arguments, launch_file=Path(path),
                           find_package=self._find_package, environ=self.environ)
         self._file(Path(path), context)
-        return LaunchPlan(self.processes, arguments)
+        for load in self.loads:
+            if not load.containers:  # a load_composable_node: its container, if launched here
+                load.containers = [p for p in self.processes
+                                   if p.node_name == load.container_name]
+        return LaunchPlan(self.processes, arguments, self.loads)
 
     def _file(self, path, context):
         resolved = path.resolve()
@@ -103,11 +115,14 @@ class Loader:
                 'push-ros-namespace': self._push_namespace,
                 'push_ros_namespace': self._push_namespace,
                 'include': self._include,
+                'node_container': self._node_container,
+                'load_composable_node': self._load_composable_node,
             }.get(entity.kind)
             if handler is None:
                 raise LaunchError(
                     '<{}> is not supported by colcon-wasm launch (supported: arg, let, node, '
-                    'group, push-ros-namespace, include)'.format(entity.kind), *entity.where)
+                    'group, push-ros-namespace, include, node_container, '
+                    'load_composable_node)'.format(entity.kind), *entity.where)
             handler(entity, context)
 
     def _condition(self, entity, context):
@@ -199,8 +214,8 @@ class Loader:
         for key in ('respawn', 'launch-prefix', 'launch_prefix', 'cwd'):
             if entity.get(key) is not None:
                 raise LaunchError(
-                    "the <node> attribute '{}' is not supported by colcon-wasm launch".format(
-                        key), *entity.where_of(key))
+                    "the <{}> attribute '{}' is not supported by colcon-wasm launch".format(
+                        entity.kind, key), *entity.where_of(key))
         remappings = []
         for remap in entity.get_list('remap'):
             remappings.append((self._text(remap, 'from', context, optional=False),
@@ -215,10 +230,88 @@ class Loader:
                 variable, 'value', context, optional=False)
             variable.check_complete()
         entity.check_complete(ignored=_IGNORED_NODE_ATTRIBUTES)
-        self.processes.append(NodeProcess(
+        process = NodeProcess(
             package, executable, name=name, namespace=namespace, arguments=arguments,
             ros_arguments=ros_arguments, remappings=remappings, parameters=parameters,
-            env=env, exec_name=exec_name, where=entity.where))
+            env=env, exec_name=exec_name, where=entity.where)
+        self.processes.append(process)
+        return process
+
+    # ------------------------------------------------------ composable nodes
+
+    def _node_container(self, entity, context):
+        """Start a container like a node, then load its composable nodes into it."""
+        for key in ('name', 'namespace'):
+            if entity.get(key) is None:
+                raise LaunchError(
+                    "<node_container> needs the attribute '{}': the container's full name "
+                    '(namespace + name) is where its composable nodes are loaded; write '
+                    'namespace="" for the root namespace'.format(key), *entity.where)
+        children = entity.get_list('composable_node')
+        process = self._node(entity, context)
+        nodes = [self._composable_node(child, context) for child in children
+                 if self._condition(child, context)]
+        if nodes:
+            self.loads.append(LoadComposableNodes(
+                process.node_name, nodes, containers=[process], kind=entity.kind,
+                where=entity.where))
+
+    def _load_composable_node(self, entity, context):
+        """Load composable nodes into a container of this launch, or one running already."""
+        target = self._text(entity, 'target', context, optional=False)
+        children = entity.get_list('composable_node')
+        entity.check_complete()
+        if not children:
+            raise LaunchError(
+                '<load_composable_node> needs at least one <composable_node> (pkg, plugin, '
+                'name) to load', *entity.where)
+        namespace, _, name = target.strip('/').rpartition('/')
+        validate_node_name(name, '/' + namespace, entity.where_of('target'),
+                           what='target {!r}: the container'.format(target))
+        nodes = [self._composable_node(child, context) for child in children
+                 if self._condition(child, context)]
+        if nodes:
+            self.loads.append(LoadComposableNodes(target, nodes, where=entity.where))
+
+    def _composable_node(self, entity, context):
+        """Evaluate one <composable_node> as launch_ros' get_composable_node_load_request."""
+        package = self._text(entity, 'pkg', context, optional=False)
+        plugin = self._text(entity, 'plugin', context, optional=False)
+        name = self._text(entity, 'name', context, optional=False)
+        namespace = absolute_namespace(
+            context.configurations.get(_NAMESPACE_KEY), self._text(entity, 'namespace', context))
+        validate_node_name(name, namespace, entity.where, what='composable node')
+        remappings = []
+        for remap in entity.get_list('remap'):
+            remappings.append((self._text(remap, 'from', context, optional=False),
+                               self._text(remap, 'to', context, optional=False)))
+            remap.check_complete()
+        parameters = []
+        for param in entity.get_list('param'):
+            for item in self._parameter_items(param, context, prefix=''):
+                if isinstance(item, Path):
+                    where = param.where_of('from')
+                    parameters += [(n, v, where) for n, v in file_parameters(
+                        item, name, namespace, where)]
+                else:
+                    parameters.append(item)
+        extra_arguments = []
+        for argument in entity.get_list('extra_arg'):
+            arg_name = self._text(argument, 'name', context, optional=False)
+            value = argument.get('value', optional=False)
+            where = argument.where_of('value')
+            if not isinstance(value, str):
+                raise LaunchError(
+                    "<extra_arg name='{}'>: write the value as a string (value: '{}'), as "
+                    'ros2 launch reads it'.format(arg_name, yaml_value(value)), *where)
+            extra_arguments.append(
+                (arg_name, extra_argument_value(substitute(value, context, where), arg_name,
+                                                where), where))
+            argument.check_complete()
+        entity.check_complete()
+        return ComposableNode(package, plugin, name, namespace=namespace,
+                              remappings=remappings, parameters=parameters,
+                              extra_arguments=extra_arguments, where=entity.where)
 
     def _command_line(self, entity, key, context):
         value = entity.get(key)
@@ -234,6 +327,16 @@ class Loader:
 
     def _parameters(self, param, context, node_name, prefix):
         """Return ``[(name, yaml_text, node_or_None)]`` of one <param>."""
+        result = []
+        for item in self._parameter_items(param, context, prefix):
+            if isinstance(item, Path):
+                result += parameters_from_file(item, node_name, param.where_of('from'))
+            else:
+                result.append((item[0], yaml_value(item[1]), None))  # node-wide -p
+        return result
+
+    def _parameter_items(self, param, context, prefix):
+        """Return the typed ``(name, value, where)`` of one <param>, or its file's Path."""
         source = param.get('from')
         name = param.get('name')
         where = param.where
@@ -245,7 +348,7 @@ class Loader:
             path = Path(substitute(source, context, param.where_of('from')))
             if not path.is_absolute() and context.launch_file is not None:
                 path = Path(context.launch_file).parent / path
-            return parameters_from_file(path, node_name, param.where_of('from'))
+            return [path]
         if name is None:
             raise LaunchError("<param> needs 'name' (with 'value' or nested <param>) or "
                               "'from'", *where)
@@ -261,14 +364,14 @@ class Loader:
         if nested:
             result = []
             for child in nested:
-                result += self._parameters(child, context, node_name, full + '.')
+                result += self._parameter_items(child, context, full + '.')
             return result
         if value is None:
             raise LaunchError("<param name='{}'> needs a 'value'".format(full), *where)
         typed = parameter_value(value, value_type, separator, context,
                                 param.where_of('value'), full,
                                 typed_text=param.frontend == 'xml')
-        return [(full, yaml_value(typed), None)]
+        return [(full, typed, param.where_of('value'))]
 
 
 _TYPES = {'str': str, 'int': int, 'float': float, 'bool': bool}

@@ -1,7 +1,12 @@
 # Copyright 2026 colcon-wasm contributors
 # Licensed under the Apache License, Version 2.0
 
-"""A launch plan: the processes to start, each with its ROS arguments."""
+"""A launch plan: the processes to start, each with its ROS arguments.
+
+It also holds the composable nodes to load into containers
+(``colcon_wasm.launch.composable``), which the host loads once the processes
+have started.
+"""
 
 import re
 
@@ -37,6 +42,31 @@ def absolute_namespace(base, namespace):
     return combined
 
 
+def validate_node_name(name, namespace, where, what='node'):
+    """
+    Check a node name and namespace as rcl would, before anything runs.
+
+    :raises LaunchError: naming the file and line of the tag
+    """
+    if name is not None and not _NAME.match(name):
+        raise LaunchError(
+            "{} name '{}' is not valid: use letters, digits and '_', not starting "
+            'with a digit'.format(what, name), *where)
+    if namespace is not None and namespace != '/':
+        tokens = namespace.strip('/').split('/')
+        if not all(_NAMESPACE_TOKEN.match(t) for t in tokens):
+            raise LaunchError(
+                "namespace '{}' is not valid: use '/'-separated names of letters, "
+                "digits and '_'".format(namespace), *where)
+
+
+def fully_qualified_name(namespace, name):
+    """Return ``/ns/name`` of a node (namespace None or ``/`` for the root)."""
+    if not namespace or namespace == '/':
+        return '/' + name
+    return namespace.rstrip('/') + '/' + name
+
+
 class NodeProcess:
     """One process of a launch: an executable with its arguments."""
 
@@ -64,16 +94,14 @@ class NodeProcess:
         self._validate()
 
     def _validate(self):
-        if self.name is not None and not _NAME.match(self.name):
-            raise LaunchError(
-                "node name '{}' is not valid: use letters, digits and '_', not starting "
-                'with a digit'.format(self.name), *self.where)
-        if self.namespace is not None and self.namespace != '/':
-            tokens = self.namespace.strip('/').split('/')
-            if not all(_NAMESPACE_TOKEN.match(t) for t in tokens):
-                raise LaunchError(
-                    "namespace '{}' is not valid: use '/'-separated names of letters, "
-                    "digits and '_'".format(self.namespace), *self.where)
+        validate_node_name(self.name, self.namespace, self.where)
+
+    @property
+    def node_name(self):
+        """Return the node's fully qualified name, or None when the launch file names none."""
+        if self.name is None:
+            return None
+        return fully_qualified_name(self.namespace, self.name)
 
     def ros_argv(self):
         """Return the arguments after ``--ros-args`` that launch_ros would give."""
@@ -107,9 +135,14 @@ class NodeProcess:
 class LaunchPlan:
     """The processes of one launch, labelled ``exe-N`` like ``ros2 launch``."""
 
-    def __init__(self, processes=(), arguments=None):
-        """Keep the processes and label them ``exe-N`` with one counter, as launch does."""
+    def __init__(self, processes=(), arguments=None, loads=()):
+        """
+        Keep the processes and label them ``exe-N`` with one counter, as launch does.
+
+        :param loads: ``LoadComposableNodes`` in the order of the launch file
+        """
         self.processes = list(processes)
         self.arguments = dict(arguments or {})
+        self.loads = list(loads)
         for index, process in enumerate(self.processes, start=1):
             process.label = '{}-{}'.format(process.exec_name, index)

@@ -5,8 +5,9 @@
 
 The plan goes to the runtime's ``tools/launch_host.mjs`` as JSON; the host
 starts each process with the wasm_js ``Runtime``, prints its output prefixed
-``[label]`` as ``ros2 launch`` does, stops everything after ``duration``
-seconds, and exits non-zero when a process crashed.
+``[label]`` as ``ros2 launch`` does, loads composable nodes into their
+containers, stops everything after ``duration`` seconds, and exits non-zero
+when a process crashed or a composable node failed to load.
 """
 
 import json
@@ -17,10 +18,12 @@ import signal
 import subprocess
 import threading
 
+from colcon_wasm.launch.composable import LOAD_NODE_TYPE
 from colcon_wasm.launch.errors import LaunchError
 from colcon_wasm.launch.install_space import InstallSpaceError
 
 HOST_SCRIPT = Path('tools') / 'launch_host.mjs'
+DEFAULT_LOAD_TIMEOUT = 60.0
 LAUNCH_FILE_SUFFIXES = ('.launch.xml', '.launch.yaml', '.launch.yml', '.launch.py',
                         '.xml', '.yaml', '.yml', '.py')
 
@@ -54,14 +57,34 @@ def find_launch_file(install_space, package, file_name):
     return matches[0]
 
 
-def host_plan(plan, install_space, *, duration=None, echo=(), stdin=False):
+def _check_load_node_types(install_space, load):
+    """Raise unless the install space describes LoadNode and rcl_interfaces' Parameter."""
+    for package in ('composition_interfaces', 'rcl_interfaces'):
+        try:
+            found = install_space.package(package).types_path.is_file()
+        except InstallSpaceError:
+            found = False
+        if not found:
+            file, line = load.where
+            raise LaunchError(
+                "loading composable nodes calls {} and needs the type descriptions of '{}', "
+                "which the install space '{}' lacks: build it with 'colcon build --wasm "
+                "--packages-up-to {}'".format(LOAD_NODE_TYPE, package, install_space.base,
+                                              package), file, line)
+
+
+def host_plan(plan, install_space, *, duration=None, echo=(), stdin=False,
+              load_timeout=DEFAULT_LOAD_TIMEOUT):
     """
     Describe a plan for ``launch_host.mjs``: absolute paths, no lookups left.
 
     With ``stdin`` the (single) process reads this command's standard input,
     as with ``ros2 run``; launched processes get none, as with ``ros2 launch``.
+    ``load_timeout`` bounds, in seconds, the wait for a container's load_node
+    service and for each of its answers.
 
-    :raises LaunchError: for an executable that is not in the install space
+    :raises LaunchError: for an executable that is not in the install space,
+      or composable nodes without the composition_interfaces types
     """
     processes = []
     for process in plan.processes:
@@ -75,8 +98,12 @@ def host_plan(plan, install_space, *, duration=None, echo=(), stdin=False):
         entry['pthread'] = executable.pthread
         entry['uses_bus'] = executable.uses_bus
         processes.append(entry)
+    if plan.loads:
+        _check_load_node_types(install_space, plan.loads[0])
     return {
         'processes': processes,
+        'loads': [load.to_json() for load in plan.loads],
+        'load_timeout': load_timeout,
         'duration': duration,
         'echo': list(echo),
         'stdin': bool(stdin) and len(processes) == 1,

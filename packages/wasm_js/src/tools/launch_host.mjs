@@ -11,8 +11,10 @@
  * the types.json files and the URL of the Runtime module to use (the install
  * space's, which matches the executables). All processes share one bus (one Runtime). Output is
  * prefixed `[label]` and process events are reported as `ros2 launch` does.
+ * Composable nodes (`plan.loads`) are loaded into their containers once the
+ * processes have started (./composable.mjs).
  * The exit status is 1 when a process crashed or exited with a non-zero
- * code, 0 otherwise.
+ * code, or a composable node failed to load, 0 otherwise.
  */
 
 import { readFileSync } from 'node:fs';
@@ -20,6 +22,7 @@ import process from 'node:process';
 import { pathToFileURL } from 'node:url';
 
 import { TypeRegistry } from '../cdr.mjs';
+import { ComposableLoader } from './composable.mjs';
 import { graphModel, subscriptionQos } from './graph.mjs';
 import { formatYaml } from './yaml.mjs';
 
@@ -78,12 +81,22 @@ async function main() {
   const states = new Map();
   let failed = false;
   let stopping = false;
+  let pendingLoads = 0;
   let finish;
   const done = new Promise((resolve) => { finish = resolve; });
 
   const checkDone = () => {
-    if ([...states.values()].every((s) => s !== 'running')) finish();
+    if (pendingLoads === 0 && [...states.values()].every((s) => s !== 'running')) finish();
   };
+  const loader = new ComposableLoader({
+    runtime,
+    tools: () => runtime.tools(),
+    registry,
+    timeoutMs: (plan.load_timeout || 60) * 1000,
+    isRunning: (label) => states.get(label) === 'running',
+    out,
+    err,
+  });
 
   for (const proc of plan.processes) {
     states.set(proc.label, 'running');
@@ -102,6 +115,7 @@ async function main() {
         states.set(proc.label, 'exited');
         out(`[INFO] [${proc.label}]: process has finished cleanly`);
       }
+      loader.processExited();
       checkDone();
     };
     try {
@@ -125,10 +139,24 @@ async function main() {
     }
   }
 
+  for (const group of plan.loads || []) {
+    pendingLoads++;
+    loader.load(group).then((ok) => {
+      if (!ok) failed = true;
+    }, (e) => {
+      failed = true;
+      err(`[ERROR] [launch]: loading into '${group.target}' failed: ${e && e.stack ? e.stack : e}`);
+    }).finally(() => {
+      pendingLoads--;
+      checkDone();
+    });
+  }
+
   const stopAll = async (why) => {
     if (stopping) return;
     stopping = true;
     out(`[INFO] [launch]: ${why}`);
+    loader.shutdown();
     await Promise.all([...handles.entries()].map(async ([label, handle]) => {
       if (states.get(label) !== 'running') return;
       await handle.stop();
