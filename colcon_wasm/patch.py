@@ -49,10 +49,16 @@ class Hunk:
 class FileDiff:
     """The hunks for one file."""
 
-    def __init__(self, old_path, new_path):
-        """Describe the changes of one file."""
+    def __init__(self, old_path, new_path, strip=None):
+        """
+        Describe the changes of one file.
+
+        :param int strip: leading path components to remove (`patch -p`);
+          None: remove an `a/` or `b/` prefix only
+        """
         self.old_path = old_path
         self.new_path = new_path
+        self.strip = strip
         self.hunks = []
 
     @property
@@ -60,23 +66,26 @@ class FileDiff:
         """The path relative to the package (first component stripped)."""
         name = self.new_path if self.new_path != '/dev/null' \
             else self.old_path
-        return _strip_component(name)
+        return _strip_component(name, self.strip)
 
 
-def _strip_component(name):
+def _strip_component(name, strip=None):
     name = name.split('\t')[0].strip()
+    if strip is not None:
+        return name.split('/', strip)[-1] if strip else name
     parts = name.split('/', 1)
     if len(parts) == 2 and parts[0] in ('a', 'b'):
         return parts[1]
     return name
 
 
-def parse_patch(text, patch_name):
+def parse_patch(text, patch_name, strip=None):
     """
     Parse a unified diff (as written by `git diff` or `diff -u`).
 
     :param str text: the patch
     :param str patch_name: for messages
+    :param int strip: leading path components to remove (see FileDiff)
     :returns: list of :class:`FileDiff`
     :raises PatchError: for a malformed patch
     """
@@ -89,7 +98,7 @@ def parse_patch(text, patch_name):
         if line.startswith('--- ') and index + 1 < len(lines) and \
                 lines[index + 1].startswith('+++ '):
             current = FileDiff(line[4:].rstrip('\n'),
-                               lines[index + 1][4:].rstrip('\n'))
+                               lines[index + 1][4:].rstrip('\n'), strip)
             diffs.append(current)
             index += 2
             continue
@@ -195,7 +204,7 @@ def apply_file_diff(lines, diff, *, package, patch_name):
     return result
 
 
-def apply_patches(tree, patch_files, *, package):
+def apply_patches(tree, patch_files, *, package, strip=None):
     """
     Apply patches to a folder, all or nothing.
 
@@ -205,18 +214,19 @@ def apply_patches(tree, patch_files, *, package):
     :param pathlib.Path tree: the folder to patch (a copy of the source)
     :param patch_files: the patch files, in order
     :param str package: the package name, for messages
+    :param int strip: leading path components to remove (`patch -p`)
     :raises PatchError: when a patch does not apply
     """
     contents = {}
     for patch_file in patch_files:
         patch_file = Path(patch_file)
         try:
-            text = patch_file.read_text()
+            text = patch_file.read_text(encoding='utf-8', errors='surrogateescape')
         except OSError as e:
             raise PatchError(
                 f"package '{package}': cannot read patch '{patch_file}': "
                 f'{e.strerror}') from e
-        for diff in parse_patch(text, patch_file.name):
+        for diff in parse_patch(text, patch_file.name, strip):
             target = tree / diff.path
             if not _is_inside(target, tree):
                 raise PatchError(
@@ -226,8 +236,9 @@ def apply_patches(tree, patch_files, *, package):
                 if diff.old_path == '/dev/null':
                     contents[diff.path] = []
                 elif target.is_file():
-                    contents[diff.path] = target.read_text().splitlines(
-                        keepends=True)
+                    # any bytes survive (surrogateescape): sources need not be UTF-8
+                    contents[diff.path] = target.read_text(
+                        encoding='utf-8', errors='surrogateescape').splitlines(keepends=True)
                 else:
                     raise PatchError(
                         f"package '{package}': patch '{patch_file.name}' "
@@ -246,7 +257,7 @@ def apply_patches(tree, patch_files, *, package):
                 target.unlink()
             continue
         target.parent.mkdir(parents=True, exist_ok=True)
-        target.write_text(''.join(lines))
+        target.write_text(''.join(lines), encoding='utf-8', errors='surrogateescape')
 
 
 def _is_inside(path, folder):

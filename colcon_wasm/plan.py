@@ -11,7 +11,8 @@ class BuildPlan:
     """How one package is built with `--wasm`."""
 
     def __init__(self, *, original_type, recipe, rule, emscripten, settings,
-                 host_tool=False, underlays=()):
+                 host_tool=False, underlays=(), system_rule=None,
+                 extra_cmake_args=()):
         """
         Describe the wasm build of a package.
 
@@ -26,6 +27,10 @@ class BuildPlan:
           stock task for the host; no CMake arguments, no post-processing)
         :param underlays: install bases of the `--wasm` underlays, highest
           priority first
+        :param system_rule: for a package built from Debian's source (a
+          rosdep key), the recipe's :class:`SystemRule`
+        :param extra_cmake_args: CMake arguments the package's system
+          dependencies need (header-only libraries of the host)
         """
         self.original_type = original_type
         self.recipe = recipe
@@ -34,3 +39,5 @@ class BuildPlan:
         self.settings = settings
         self.host_tool = host_tool
         self.underlays = list(underlays)
+        self.system_rule = system_rule
+        self.extra_cmake_args = list(extra_cmake_args)

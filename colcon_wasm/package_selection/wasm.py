@@ -33,6 +33,10 @@ from colcon_wasm.package_discovery.bundled import is_bundled
 from colcon_wasm.plan import BuildPlan
 from colcon_wasm.plan import PLAN_KEY
 from colcon_wasm.recipe import load_recipe
+from colcon_wasm.system_deps import add_system_packages
+from colcon_wasm.system_deps import check_system_dependencies
+from colcon_wasm.system_deps import system_cmake_args
+from colcon_wasm.system_deps import SYSTEM_RULE_KEY
 from colcon_wasm.toolchain import find_emscripten
 from colcon_wasm.underlay import get_underlays
 from colcon_wasm.underlay import PREFIX_PATH_VARIABLE
@@ -217,10 +221,23 @@ class WasmDependencyPackageSelection(PackageSelectionExtensionPoint):
                         decorator.descriptor.dependencies.setdefault(
                             category, set()).add(DependencyDescriptor(dep))
                 added.setdefault(name, set()).add(dep)
+        build_base = Path(getattr(args, 'build_base', None) or 'build_wasm').absolute()
+        for name, deps in add_system_packages(
+                decorators, recipe, build_base=build_base,
+                known=known_package_names(args, decorators)).items():
+            added.setdefault(name, set()).update(deps)
         if not added:
             return
         _extend_recursive_dependencies(decorators, added)
         decorators[:] = topological_order_decorators(decorators)
+
+
+def known_package_names(args, decorators):
+    """Get the names of the packages of the workspace and of the underlays."""
+    known = {d.descriptor.name for d in decorators}
+    for underlay in get_underlays(args):
+        known |= underlay.packages()
+    return known
 
 
 def _extend_recursive_dependencies(decorators, added):
@@ -290,6 +307,12 @@ class WasmPackageSelection(PackageSelectionExtensionPoint):
             if _never_built(decorator.descriptor, recipe):
                 left_out.add(decorator.descriptor.name)
         _check_skipped_dependencies(decorators, recipe)
+        known = known_package_names(args, decorators)
+        problems = check_system_dependencies(decorators, recipe, known)
+        if problems:
+            raise SystemExit(exit_message(ColconWasmError(
+                f'{len(problems)} system dependencies have no WebAssembly build:\n'
+                + '\n'.join(f'  {p}' for p in problems))))
         _forget_left_out(decorators, left_out)
         _schedule_component_containers(args, decorators)
         _trim_unused_bundled(decorators)
@@ -310,7 +333,9 @@ class WasmPackageSelection(PackageSelectionExtensionPoint):
                 original_type=pkg.type, recipe=recipe,
                 rule=recipe.rule(pkg.name), emscripten=emscripten,
                 settings=settings, host_tool=pkg.type not in WASM_TYPES,
-                underlays=[u.base for u in get_underlays(args)])
+                underlays=[u.base for u in get_underlays(args)],
+                system_rule=pkg.metadata.get(SYSTEM_RULE_KEY),
+                extra_cmake_args=system_cmake_args(pkg, recipe, known))
             pkg.type = wasm_type
 
 

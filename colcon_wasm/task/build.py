@@ -11,6 +11,7 @@ from colcon_core.logging import colcon_logger
 from colcon_core.plugin_system import satisfies_version
 from colcon_core.task import get_task_extension
 from colcon_core.task import TaskExtensionPoint
+from colcon_wasm import debian_source
 from colcon_wasm.error import ColconWasmError
 from colcon_wasm.error import exit_message
 from colcon_wasm.link.report import stale_links
@@ -90,7 +91,8 @@ class WasmBuildTask(TaskExtensionPoint):
             install_base=self._install_base(args), rule=plan.rule,
             project_name=pkg.name,
             build_base=Path(args.build_base).parent,
-            underlays=plan.underlays) + \
+            underlays=plan.underlays) + plan.extra_cmake_args + \
+            (plan.system_rule.cmake_args if plan.system_rule else []) + \
             list(args.cmake_args or [])
         patches = self._patches(pkg, plan)
         inputs = build_inputs(
@@ -103,6 +105,8 @@ class WasmBuildTask(TaskExtensionPoint):
             return 0
 
         try:
+            if plan.system_rule is not None:
+                self._prepare_system_source(args, plan.system_rule)
             self._prepare_source(pkg, args, patches)
         except ColconWasmError as e:
             logger.error(exit_message(e))
@@ -161,6 +165,37 @@ class WasmBuildTask(TaskExtensionPoint):
         logger.debug(f"Building '{pkg.name}': {reason}")
         remove_stamp(args.build_base)
         return False
+
+    def _prepare_system_source(self, args, rule):
+        """
+        Put the source of a rosdep key built from Debian's source in place.
+
+        The unpacked source (cached, :mod:`colcon_wasm.debian_source`) is
+        copied to the package's folder in the build base, with the recipe's
+        CMakeLists.txt when it gives one.
+        """
+        self.progress('source')
+        source = debian_source.fetch(
+            rule.source_package, version_prefix=rule.source_version)
+        destination = Path(args.path)
+        build_file = rule.build_file.read_text() if rule.build_file else ''
+        stamp = f'{source}\n{build_file}'
+        marker = destination / '.colcon_wasm_source'
+        if not (marker.is_file() and marker.read_text() == stamp):
+            logger.info(
+                f"Building rosdep key '{rule.key}' from Debian's source package "
+                f"'{source.name}' ('{source}')")
+            if destination.exists():
+                shutil.rmtree(destination)
+            shutil.copytree(source, destination, symlinks=True,
+                            ignore=shutil.ignore_patterns('COLCON_IGNORE'))
+            if rule.build_file:
+                upstream = destination / 'CMakeLists.txt'
+                if upstream.is_file():
+                    upstream.rename(destination / 'CMakeLists.upstream.txt')
+                (destination / 'CMakeLists.txt').write_text(build_file)
+            marker.write_text(stamp)
+        args.path = str(destination)
 
     def _patches(self, pkg, plan):
         """Get the recipe's patch files for this package version."""
