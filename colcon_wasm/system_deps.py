@@ -82,12 +82,17 @@ def add_system_packages(decorators, recipe, *, build_base, known):
     return added
 
 
-def system_cmake_args(pkg, recipe, known):
-    """Get the CMake arguments the host-header keys of a package need."""
+def system_cmake_args(recipe):
+    """
+    Get the CMake arguments of the header-only keys used from the host.
+
+    They are given to every package: a package can need Eigen through a
+    dependency's exported CMake config (orocos_kdl_vendor) without naming
+    the key itself.
+    """
     args = []
-    for key in system_keys(pkg, known):
-        rule = recipe.system.rule(key)
-        if rule is not None and rule.kind == 'host-headers':
+    for rule in recipe.system.rules.values():
+        if rule.kind == 'host-headers' and Path(rule.check).exists():
             args += [a for a in rule.cmake_args if a not in args]
     return args
 

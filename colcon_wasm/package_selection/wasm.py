@@ -307,15 +307,17 @@ class WasmPackageSelection(PackageSelectionExtensionPoint):
             if _never_built(decorator.descriptor, recipe):
                 left_out.add(decorator.descriptor.name)
         _check_skipped_dependencies(decorators, recipe)
+        _forget_left_out(decorators, left_out)
+        _schedule_component_containers(args, decorators)
+        _trim_unused_bundled(decorators, requested=set(
+            (getattr(args, 'packages_up_to', None) or [])
+            + (getattr(args, 'packages_select', None) or [])))
         known = known_package_names(args, decorators)
         problems = check_system_dependencies(decorators, recipe, known)
         if problems:
             raise SystemExit(exit_message(ColconWasmError(
                 f'{len(problems)} system dependencies have no WebAssembly build:\n'
                 + '\n'.join(f'  {p}' for p in problems))))
-        _forget_left_out(decorators, left_out)
-        _schedule_component_containers(args, decorators)
-        _trim_unused_bundled(decorators)
         emscripten = getattr(args, '_colcon_wasm_emscripten', None)
         settings = WasmSettings(args)
         for decorator in decorators:
@@ -335,7 +337,7 @@ class WasmPackageSelection(PackageSelectionExtensionPoint):
                 settings=settings, host_tool=pkg.type not in WASM_TYPES,
                 underlays=[u.base for u in get_underlays(args)],
                 system_rule=pkg.metadata.get(SYSTEM_RULE_KEY),
-                extra_cmake_args=system_cmake_args(pkg, recipe, known))
+                extra_cmake_args=system_cmake_args(recipe))
             pkg.type = wasm_type
 
 
@@ -492,16 +494,22 @@ def _schedule_component_containers(args, decorators):
     decorators[:] = topological_order_decorators(decorators)
 
 
-def _trim_unused_bundled(decorators):
-    """Build bundled packages only when a selected package needs them."""
+def _trim_unused_bundled(decorators, requested=()):
+    """
+    Build bundled packages only when a selected package needs them.
+
+    Bundled packages the user names (`--packages-up-to wasm_cpp`) are kept,
+    with what they depend on.
+    """
     selected = [d for d in decorators if d.selected]
     if all(is_bundled(d.descriptor) for d in selected):
         return  # the user selected bundled packages only
     recursive = {d.descriptor.name: {str(n) for n in d.recursive_dependencies}
                  for d in selected}
-    needed = set()
+    needed = set(requested)
     for decorator in selected:
         if not is_bundled(decorator.descriptor) or \
+                decorator.descriptor.name in requested or \
                 decorator.descriptor.name == CONTAINERS_PACKAGE:
             needed |= recursive[decorator.descriptor.name]
     pending = list(needed)

@@ -229,6 +229,7 @@ class WasmBuildTask(TaskExtensionPoint):
             'emscripten': plan.emscripten.describe(),
             'flags': plan.settings.describe([]),
             'source': str(Path(args.path).resolve()),
+            'build': str(Path(args.build_base).resolve()),
         }
         path = Path(args.build_base) / SETTINGS_FILE
         previous = None
@@ -246,6 +247,16 @@ class WasmBuildTask(TaskExtensionPoint):
                     f"Source folder of '{self.context.pkg.name}' changed to "
                     f"'{settings['source']}': building from a fresh build "
                     'folder')
+                empty_build_folder(Path(args.build_base))
+            elif previous is not None and \
+                    previous.get('build', settings['build']) != settings['build']:
+                # the workspace was moved or copied: CMake refuses a cache
+                # made in another folder ("CMakeCache.txt directory ... is
+                # different")
+                logger.info(
+                    f"Build folder of '{self.context.pkg.name}' moved from "
+                    f"'{previous['build']}' to '{settings['build']}': building "
+                    'from a fresh build folder')
                 empty_build_folder(Path(args.build_base))
             elif previous is not None:
                 logger.info(
