@@ -58,19 +58,26 @@ def humble_snapshot():
         'COLCON_WASM_HUMBLE', REPO.parent / 'shared' / 'humble')).resolve()
 
 
+def corpus_snapshot():
+    """Get the corpus snapshot folder ($COLCON_WASM_CORPUS): more Humble repositories."""
+    return Path(os.environ.get(
+        'COLCON_WASM_CORPUS', REPO.parent / 'shared' / 'corpus')).resolve()
+
+
 def cache_root():
     """Get the cache folder ($COLCON_WASM_CACHE)."""
     return Path(os.environ.get(
         'COLCON_WASM_CACHE', Path.home() / '.cache' / 'colcon-wasm'))
 
 
-def unpacked_source():
-    """Get an unpacked copy of the snapshot's src/ (shared by all builds)."""
-    archive = humble_snapshot() / 'src.tar.xz'
+def unpacked_source(snapshot=None, name='humble-src'):
+    """Get an unpacked copy of a snapshot's src/ (shared by all builds)."""
+    snapshot = humble_snapshot() if snapshot is None else snapshot
+    archive = snapshot / 'src.tar.xz'
     if not archive.is_file():
-        return humble_snapshot() / 'src'  # missing: callers skip
+        return snapshot / 'src'  # missing: callers skip
     stamp = _file_digest(archive)[:16]
-    target = cache_root() / f'humble-src-{stamp}'
+    target = cache_root() / f'{name}-{stamp}'
     if not (target / '.complete').is_file():
         staging = Path(str(target) + '.tmp')
         shutil.rmtree(staging, ignore_errors=True)
@@ -108,10 +115,17 @@ def _emscripten_version():
     return find_emscripten().version_string
 
 
-def inputs_hash(up_to, skip, extra, colcon_args=()):
+def inputs_hash(up_to, skip, extra, colcon_args=(), corpus=(), underlay=None,
+                snapshot=True):
     """Hash what the build depends on."""
     digest = hashlib.sha256()
-    digest.update(_file_digest(humble_snapshot() / 'src.tar.xz').encode())
+    if snapshot:
+        digest.update(_file_digest(humble_snapshot() / 'src.tar.xz').encode())
+    if corpus:
+        digest.update(_file_digest(corpus_snapshot() / 'src.tar.xz').encode())
+        digest.update(json.dumps(sorted(corpus)).encode())
+    if underlay is not None:
+        digest.update(str(underlay.workspace).encode())
     for name in _INPUT_FOLDERS:
         if (REPO / name).is_dir():
             _tree_digest(digest, REPO / name)
@@ -145,8 +159,8 @@ def prune_stale_builds(max_age_hours=24):
         return
     limit = time.time() - max_age_hours * 3600
     for folder in root.glob('humble-*'):
-        if folder.name.startswith('humble-src-'):
-            continue  # the unpacked snapshot, shared by every build
+        if folder.name.startswith(('humble-src-', 'humble-corpus-src-')):
+            continue  # the unpacked snapshots, shared by every build
         marker = folder / 'result.json'
         used = (marker if marker.is_file() else folder).stat().st_mtime
         if used < limit:
@@ -173,7 +187,8 @@ class HumbleBuild:
 
 
 def humble_build(up_to=BELOW_RMW_UP_TO, skip=BELOW_RMW_SKIP,
-                 extra=EXTRA_PACKAGES, colcon_args=()):
+                 extra=EXTRA_PACKAGES, colcon_args=(), corpus=(), underlay=None,
+                 snapshot=True):
     """
     Build (or reuse) the Humble snapshot with `colcon build --wasm`.
 
@@ -182,6 +197,11 @@ def humble_build(up_to=BELOW_RMW_UP_TO, skip=BELOW_RMW_SKIP,
     :param extra: extra packages to add to the workspace (name: folder)
     :param colcon_args: more `colcon build` arguments (last on the command
       line, part of the cache key), e.g. `--cmake-args ...`
+    :param corpus: repository folders of the corpus snapshot to add (e.g.
+      'ros/pluginlib'), unmodified
+    :param underlay: a :class:`HumbleBuild` to build on (`--wasm-underlay`)
+    :param bool snapshot: add the Humble snapshot's sources (False for an
+      overlay of an underlay that holds them)
     :returns: the :class:`HumbleBuild`
     :raises pytest.skip.Exception: when the snapshot is absent
     :raises AssertionError: when the build fails (with its log tail)
@@ -189,7 +209,10 @@ def humble_build(up_to=BELOW_RMW_UP_TO, skip=BELOW_RMW_SKIP,
     if not (humble_snapshot() / 'src.tar.xz').is_file():
         pytest.skip(f'Humble snapshot not found at {humble_snapshot()} '
                     '(set COLCON_WASM_HUMBLE)')
-    key = inputs_hash(up_to, skip, extra, colcon_args)
+    if corpus and not (corpus_snapshot() / 'src.tar.xz').is_file():
+        pytest.skip(f'Humble corpus snapshot not found at {corpus_snapshot()} '
+                    '(set COLCON_WASM_CORPUS)')
+    key = inputs_hash(up_to, skip, extra, colcon_args, corpus, underlay, snapshot)
     workspace = cache_root() / f'humble-{key}'
     if key in _FAILED:
         # every test module asks; one failed build is reported, not redone
@@ -200,7 +223,13 @@ def humble_build(up_to=BELOW_RMW_UP_TO, skip=BELOW_RMW_SKIP,
     prune_stale_builds()
     shutil.rmtree(workspace, ignore_errors=True)
     workspace.mkdir(parents=True)
-    shutil.copytree(unpacked_source(), workspace / 'src', symlinks=True)
+    if snapshot:
+        shutil.copytree(unpacked_source(), workspace / 'src', symlinks=True)
+    if corpus:
+        corpus_source = unpacked_source(corpus_snapshot(), 'humble-corpus-src')
+        for repository in corpus:
+            shutil.copytree(corpus_source / repository,
+                            workspace / 'src' / 'corpus' / repository, symlinks=True)
     for name, folder in extra.items():
         shutil.copytree(folder, workspace / 'src' / 'extra' / name)
     src_digest_before = source_digest(workspace / 'src')
@@ -208,6 +237,7 @@ def humble_build(up_to=BELOW_RMW_UP_TO, skip=BELOW_RMW_SKIP,
         'nice', '-n', '10', str(Path(sys.executable).parent / 'colcon'),
         'build', '--wasm', '--parallel-workers', str(os.cpu_count() or 2),
         '--packages-skip', *skip, '--packages-up-to', *up_to,
+        *(['--wasm-underlay', str(underlay.install)] if underlay else []),
         *colcon_args]
     start = time.monotonic()
     limit = float(os.environ.get('COLCON_WASM_HUMBLE_BUILD_TIMEOUT', 3600))

@@ -44,7 +44,13 @@ TEST_PACKAGES = {
     'cdr_test_msgs': REPO / 'tests' / 'data' / 'cdr' / 'cdr_test_msgs',
     # the toolchain probe of tests/test_humble.py (rcutils, rcpputils, yaml)
     'humble_probe': REPO / 'tests' / 'fixtures' / 'humble_probe',
+    # composition and pluginlib as users write them (tests/test_ros_loading.py)
+    **{name: REPO / 'tests' / 'ros_fixtures' / name for name in (
+        'composition_cases', 'pluginlib_base', 'pluginlib_greeters', 'pluginlib_user')},
 }
+
+"""Repositories of the corpus snapshot the fixtures need (pluginlib)."""
+CORPUS = ('ros/pluginlib', 'ros2/tinyxml2_vendor', 'leethomason/tinyxml2')
 
 RCLCPP_UP_TO = (
     'rclcpp', 'rclcpp_action', 'rclcpp_components', 'rclcpp_lifecycle',
@@ -83,7 +89,8 @@ def rclcpp_build():
     if workspace:
         return ExistingBuild(workspace)
     return humble_build(up_to=RCLCPP_UP_TO, skip=RCLCPP_SKIP,
-                        extra=TEST_PACKAGES, colcon_args=RCLCPP_COLCON_ARGS)
+                        extra=TEST_PACKAGES, colcon_args=RCLCPP_COLCON_ARGS,
+                        corpus=CORPUS)
 
 
 def executable(build, package, name):

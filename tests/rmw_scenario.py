@@ -115,8 +115,12 @@ class Platform:
 
     def exe(self, package, name):
         """Get how this platform names an installed executable (a path or a URL)."""
-        path = self.install / package / 'lib' / package / f'{name}.js'
-        assert path.is_file(), f'{package}/{name} was not built ({path})'
+        from colcon_wasm.launch.install_space import InstallSpace
+        from colcon_wasm.launch.install_space import InstallSpaceError
+        try:
+            path = InstallSpace(self.install, underlays=[]).executable(package, name).js
+        except InstallSpaceError as e:
+            raise AssertionError(f'{package}/{name} was not built: {e}') from e
         if self.name == 'node':
             return str(path)
         return f'{self._browser.base}/install/{path.relative_to(self.install).as_posix()}'
