@@ -106,6 +106,7 @@ export class Session {
       url: new URL(info.url, location.href).href,
       args: proc.args,
       name: proc.label,
+      ...this.installView(),
       onLog: ({ stream, text }) => this.addLog(proc, { stream, severity: severityOf(stream, text), text }),
       onExit: (exit) => this.exited(proc, exit),
       stdin: true, // an open standard input, typed into from the log dock
@@ -118,6 +119,18 @@ export class Session {
       this.exited(proc, { code: null, crashed: true, reason: error && error.message ? error.message : String(error), stack: error && error.stack });
     });
     return proc;
+  }
+
+  /**
+   * What every program sees of the install spaces (colcon_wasm/launch/install_view.py):
+   * read-only views served by `colcon-wasm serve` under /fs/, and AMENT_PREFIX_PATH.
+   * @returns {{mounts: Array<{path: string, url: string}>, env: Object<string, string>}}
+   */
+  installView() {
+    const mounts = (this.workspace.mounts || []).map((m) => ({ path: m.path, url: new URL(m.url, location.href).href }));
+    const env = {};
+    for (const [name, value] of Object.entries(this.workspace.environment || {})) if (value) env[name] = value;
+    return { mounts, env };
   }
 
   exited(proc, exit) {

@@ -104,7 +104,8 @@ export function createViewFs(FS, warn = () => {}) {
       const path = FS.getPath(node);
       const listing = fromSource('list', path, () => node.mount.opts.source.list(path));
       if (listing.self && listing.self.kind !== 'dir') fail(Errno.ENOTDIR);
-      if (listing.self) {
+      // what the parent's listing said stays (one stat per node, as the program saw it first)
+      if (!node.viewEntry && listing.self) {
         node.viewEntry = listing.self;
         node.mode = modeOf(listing.self);
       }

@@ -6,7 +6,7 @@
  * workers; the program's host is one). The protocol, as `colcon-wasm serve`
  * implements it under `/fs/<n>/` (colcon_wasm/server/views.py):
  *
- *   GET <url>/<relative path>/   a directory: JSON {mode, mtime_ms, entries: [{name,
+ *   GET <url>/<relative path>/   a directory: JSON {size, mode, mtime_ms, entries: [{name,
  *                                kind: 'dir'|'file', size, mode, mtime_ms}]}
  *   GET <url>/<relative path>    a file's bytes
  *
@@ -89,7 +89,7 @@ export function httpViewSource(url, root) {
     list(path) {
       const listing = JSON.parse(getSync(`${urlOf(path)}/`, 'text'));
       return {
-        self: { name: '', kind: 'dir', size: 0, mode: listing.mode, mtimeMs: listing.mtime_ms },
+        self: { name: '', kind: 'dir', size: listing.size, mode: listing.mode, mtimeMs: listing.mtime_ms },
         entries: listing.entries.map(entryOf),
       };
     },

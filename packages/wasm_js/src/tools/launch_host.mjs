@@ -8,7 +8,8 @@
  *
  * The plan (colcon_wasm/launch/runner.py) lists processes with absolute .js
  * paths, arguments and environment, an optional duration, topics to echo,
- * the types.json files and the URL of the Runtime module to use (the install
+ * the types.json files, the read-only views every process gets of the
+ * install bases (`mounts`, see view_fs.mjs) and the URL of the Runtime module to use (the install
  * space's, which matches the executables). All processes share one bus (one Runtime). Output is
  * prefixed `[label]` and process events are reported as `ros2 launch` does.
  * Composable nodes (`plan.loads`) are loaded into their containers once the
@@ -130,6 +131,7 @@ async function main() {
         },
         onExit,
         stdin: plan.stdin ? true : undefined,
+        mounts: plan.mounts || [],
       });
       handles.set(proc.label, handle);
       if (plan.stdin) forwardStdin(handle);
