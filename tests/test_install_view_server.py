@@ -69,7 +69,8 @@ def test_ament_prefixes_of_isolated_and_merged_bases(tmp_path):
 
 
 def test_program_environment_keeps_what_the_user_set():
-    assert program_environment({'A': '1'}, ['/p', '/q']) == {'A': '1', 'AMENT_PREFIX_PATH': '/p:/q'}
+    assert program_environment({'A': '1'}, ['/p', '/q']) == {
+        'A': '1', 'AMENT_PREFIX_PATH': '/p:/q'}
     assert program_environment({'AMENT_PREFIX_PATH': '/mine'}, ['/p']) == {
         'AMENT_PREFIX_PATH': '/mine'}
     assert program_environment({'AMENT_PREFIX_PATH': ''}, ['/p']) == {'AMENT_PREFIX_PATH': ''}
@@ -99,7 +100,7 @@ def test_launch_plan_gives_views_and_prefixes_overlay_first(tmp_path):
 
 @pytest.fixture(scope='module')
 def tree(tmp_path_factory):
-    """An isolated install space with files, links in and out, and a second base."""
+    """Write an isolated install space with files, links in and out, and a second base."""
     root = tmp_path_factory.mktemp('views')
     base = root / 'install_wasm'
     prefix = _package(base, 'demo_nodes', executable='talker')
@@ -117,6 +118,8 @@ def tree(tmp_path_factory):
     os.symlink(str(root / 'secret.txt'), data / 'link_out.txt')
     os.symlink(str(root), data / 'dir_link_out')
     os.symlink('missing', data / 'dangling')
+    _package(base, 'other_pkg')
+    (base / 'other_pkg' / 'share' / 'other_pkg').mkdir()
     underlay = root / 'underlay'
     _package(underlay, 'rclcpp')
     return root, base, underlay, data
@@ -157,8 +160,8 @@ def test_workspace_describes_the_views_and_the_prefixes(tree, server):
     workspace = json.loads(body)
     assert workspace['mounts'] == [{'path': str(base), 'url': '/fs/0'},
                                    {'path': str(underlay), 'url': '/fs/1'}]
-    assert workspace['environment'] == {
-        'AMENT_PREFIX_PATH': '{}:{}'.format(base / 'demo_nodes', underlay / 'rclcpp')}
+    assert workspace['environment'] == {'AMENT_PREFIX_PATH': ':'.join(map(str, [
+        base / 'demo_nodes', base / 'other_pkg', underlay / 'rclcpp']))}
 
 
 def test_listing_names_kinds_sizes_modes_and_times(tree, server):
@@ -184,7 +187,8 @@ def test_listing_names_kinds_sizes_modes_and_times(tree, server):
     assert entries['link_in.yaml']['kind'] == 'file'
     assert entries['link_in.yaml']['size'] == (data / 'config.yaml').stat().st_size
     status, _, body = _get(server, '/fs/0/')
-    assert status == 200 and [e['name'] for e in json.loads(body)['entries']] == ['demo_nodes']
+    assert status == 200 and [e['name'] for e in json.loads(body)['entries']] == [
+        'demo_nodes', 'other_pkg']
     status, _, body = _get(server, '/fs/1/rclcpp/share/ament_index/resource_index/packages/')
     assert status == 200 and [e['name'] for e in json.loads(body)['entries']] == ['rclcpp']
     status, _, body = _get(server, DATA + '/sub%20dir/')
@@ -202,13 +206,52 @@ def test_files_are_served_exactly(tree, server):
     status, headers, body = _get(server, DATA + '/config.yaml', {'Accept-Encoding': 'gzip'})
     assert status == 200
     original = (data / 'config.yaml').read_bytes()
-    assert (gzip.decompress(body) if headers.get('Content-Encoding') == 'gzip' else body) == original
+    if headers.get('Content-Encoding') == 'gzip':
+        body = gzip.decompress(body)
+    assert body == original
     status, _, body = _get(server, DATA + '/link_in.yaml')
     assert status == 200 and body == original
     status, _, body = _get(server, DATA + '/sub%20dir/%C3%BC.txt')
     assert status == 200 and body == b'unicode name'
     status, headers, body = _get(server, DATA + '/blob.bin', method='HEAD')
     assert status == 200 and body == b'' and headers['Content-Length'] == '2048'
+
+
+def _walk(server, path, skip):
+    status, headers, body = _get(server, '{}?walk={}'.format(path, skip))
+    assert status == 200, body
+    assert headers['Cross-Origin-Embedder-Policy'] == 'require-corp'
+    return json.loads(body)['listings']
+
+
+def test_a_walk_lists_the_directories_along_a_path(tree, server):
+    _, base, _, data = tree
+    listings = _walk(server, DATA + '/sub%20dir/%C3%BC.txt', 0)
+    assert sorted(listings) == [
+        '', 'demo_nodes', 'demo_nodes/share', 'demo_nodes/share/demo_nodes',
+        'demo_nodes/share/demo_nodes/data', 'demo_nodes/share/demo_nodes/data/sub dir']
+    assert listings['demo_nodes/share/demo_nodes/data'] == json.loads(_get(server, DATA + '/')[2])
+    # from the 3rd directory on (0: the base); up to what exists; not through a link out
+    assert sorted(_walk(server, DATA + '/missing/deeper', 3)) == [
+        'demo_nodes/share/demo_nodes', 'demo_nodes/share/demo_nodes/data']
+    assert sorted(_walk(server, DATA + '/dir_link_out/x', 4)) == [
+        'demo_nodes/share/demo_nodes/data']
+    assert _walk(server, '/fs/0/nothing/here', 1) == {}
+    status, _, body = _get(server, DATA + '/?walk=two')
+    assert status == 404 and b'walk=' in body
+
+
+def test_a_walk_into_a_resource_index_brings_every_package_of_the_base(tree, server):
+    _, base, _, _ = tree
+    index = 'share/ament_index/resource_index'
+    listings = _walk(server, '/fs/0/demo_nodes/{}/packages/demo_nodes'.format(index), 0)
+    for package in ('demo_nodes', 'other_pkg'):
+        assert '{}/{}/packages'.format(package, index) in listings, sorted(listings)
+        assert package in listings  # and the directories on the way to it
+    assert [e['name'] for e in listings['other_pkg/{}/packages'.format(index)]['entries']] == [
+        'other_pkg']
+    # elsewhere a walk stays on its path
+    assert 'other_pkg' not in _walk(server, DATA, 0)
 
 
 @pytest.mark.parametrize('path,status,says', [
@@ -248,7 +291,7 @@ def test_refusals_say_why(server, path, status, says):
 ])
 def test_spawn_checks_its_mounts(options, message):
     script = (
-        "const { Runtime } = await import(process.argv[1]);"
+        'const { Runtime } = await import(process.argv[1]);'
         'const rt = await Runtime.create({ warmHosts: 0 });'
         "try { await rt.spawn({ url: '/nowhere/p.js', ...JSON.parse(process.argv[2]) });"
         " console.log('spawned'); }"

@@ -200,7 +200,9 @@ class Site:
                                               list(Path(package.prefix, relative).relative_to(
                                                   self.install_space.base).parts)))
         if head == VIEWS_PREFIX and rest:
-            kind, value = self.views.content(rest[0], rest[1:], directory)
+            walk = (query or {}).get('walk')
+            kind, value = self.views.content(rest[0], rest[1:], directory,
+                                             walk=walk[-1] if walk else None)
             if kind == 'listing':
                 return Content(body=value, content_type='application/json')
             return Content(path=value, content_type='application/octet-stream',

@@ -53,6 +53,9 @@ const SEEK_END = 2;
  *   itself and its entries (without `.` and `..`)
  * @property {function(string, number, number): Uint8Array} read up to `length` bytes of a
  *   file from `position` (fewer at its end)
+ * @property {function(string): void} [prefetch] told the whole path before a lookup walks it
+ *   (the file system lists one directory at a time): a source whose requests are costly may
+ *   fetch the listings along it at once; its errors are ignored (the lookup reports them)
  */
 
 /**
@@ -200,6 +203,37 @@ export function createViewFs(FS, warn = () => {}) {
 }
 
 /**
+ * Tell the views' sources each path a lookup is about to walk through them
+ * ({@link ViewSource} `prefetch`): Emscripten's FS resolves every path with
+ * FS.lookupPath, one directory at a time, so that is where a whole path is
+ * seen. Other paths cost one prefix check.
+ * @param {object} FS
+ * @param {Array<{path: string, source: ViewSource}>} views
+ */
+function tellSourcesOfLookups(FS, views) {
+  const lookupPath = FS.lookupPath;
+  FS.lookupPath = function lookupPathOfViews(path, opts) {
+    if (typeof path === 'string') {
+      const absolute = path.startsWith('/') ? path : `${FS.cwd()}/${path}`;
+      for (const view of views) {
+        if (absolute.startsWith(view.path) && (absolute.length === view.path.length || absolute[view.path.length] === '/')) {
+          const normalized = absolute.split('/').filter((p) => p && p !== '.').join('/');
+          if (!normalized.split('/').includes('..')) {
+            try {
+              view.source.prefetch(`/${normalized}`);
+            } catch (e) {
+              // the lookup itself reports what is wrong
+            }
+          }
+          break;
+        }
+      }
+    }
+    return lookupPath.call(this, path, opts);
+  };
+}
+
+/**
  * Mount read-only views into a program's file system (from Module.preRun,
  * before main()). Creates the directories above each path in MEMFS; a view
  * inside another one is left out (the outer view shows the same files).
@@ -216,14 +250,17 @@ export function mountViews(FS, views, warn) {
   // outer paths first, so that a view inside another is the one left out
   const byDepth = [...views].sort((a, b) => a.path.length - b.path.length);
   for (const { path, source } of byDepth) {
-    if (mounted.some((outer) => inside(path, outer))) continue;
+    if (mounted.some((outer) => inside(path, outer.path))) continue;
     try {
       FS.mkdirTree(path);
       FS.mount(type, { source }, path);
     } catch (e) {
       throw new Error(`cannot mount a read-only view at '${path}': ${errnoName(e)}`);
     }
-    mounted.push(path);
+    mounted.push({ path, source });
   }
-  return mounted;
+  // after mounting: FS.mount's own lookups must not make sources fetch anything
+  const prefetching = mounted.filter((v) => typeof v.source.prefetch === 'function');
+  if (prefetching.length) tellSourcesOfLookups(FS, prefetching);
+  return mounted.map((v) => v.path);
 }
