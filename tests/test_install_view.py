@@ -166,6 +166,26 @@ def test_several_bases_overlay_first_in_node(install, overlay, capfd):
         resources=['fs_probe', 'other_pkg']), out + err
 
 
+def test_a_runtime_without_views_is_reported(install, tmp_path):
+    # an install space whose wasm_js was built before views existed
+    base = tmp_path / 'install_wasm'
+    base.mkdir()
+    os.symlink(install / 'fs_probe', base / 'fs_probe')
+    src = base / 'wasm_js' / 'share' / 'wasm_js' / 'src'
+    shutil.copytree(RUNTIME, src)
+    for name, what, instead in (('runtime.mjs', 'static get features()', 'static get no()'),
+                                ('host_common.mjs', 'mountReadOnlyViews(msg.mounts,', '(')):
+        text = (src / name).read_text()
+        assert what in text
+        (src / name).write_text(text.replace(what, instead))
+    done = _colcon_wasm('run', '--install-base', base, 'fs_probe', 'fs_probe')
+    assert 'predates read-only views: the processes do not see their install space' in \
+        done.stderr, done.stderr
+    assert "rebuild it with 'colcon build --wasm --packages-select wasm_js'" in done.stderr
+    assert _of(done.stdout, 'fs_probe-1')[-1] == 'PREFIX none', done.stdout
+    assert done.returncode == 1
+
+
 # ------------------------------------------------------------------ Chromium
 
 

@@ -263,6 +263,15 @@ function startHostWorker() {
 
 export class Runtime {
   /**
+   * What this runtime offers beyond the first release, for callers that may
+   * load an older one (an install space's): `mounts`, spawn()'s read-only views.
+   * @returns {{mounts: boolean}}
+   */
+  static get features() {
+    return { mounts: true };
+  }
+
+  /**
    * Create the bus and the runtime.
    * @param {object} [options]
    * @param {number} [options.maxMessageBytes=64 MiB] largest message

@@ -75,7 +75,13 @@ function echoTopic(runtime, tools, registry, topic, stopping) {
 
 async function main() {
   const plan = JSON.parse(process.argv[2]);
-  const { Runtime } = await import(plan.runtime || new URL('../runtime.mjs', import.meta.url).href);
+  const runtimeUrl = plan.runtime || new URL('../runtime.mjs', import.meta.url).href;
+  const { Runtime } = await import(runtimeUrl);
+  if (plan.mounts && plan.mounts.length && !(Runtime.features && Runtime.features.mounts)) {
+    err(`[WARNING] [launch]: the wasm_js runtime ${runtimeUrl} predates read-only views: the processes `
+      + 'do not see their install space (AMENT_PREFIX_PATH is set all the same); rebuild it with '
+      + "'colcon build --wasm --packages-select wasm_js'");
+  }
   const runtime = await Runtime.create({});
   const registry = loadRegistry(plan.types || []);
   const handles = new Map();
