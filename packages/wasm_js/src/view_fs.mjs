@@ -90,11 +90,13 @@ export function createViewFs(FS, warn = () => {}) {
     } catch (e) {
       const errno = e && typeof e.code === 'string' ? Errno[e.code] : undefined;
       if (errno === Errno.ENOENT || errno === Errno.ENOTDIR) fail(errno);
+      const code = errno || Errno.EIO;
       if (!warned.has(path)) {
         warned.add(path);
-        warn(`wasm_js: cannot ${what} '${path}' of a read-only view: ${e && e.message ? e.message : e}`);
+        warn(`wasm_js: cannot ${what} '${path}' of a read-only view (the program gets ${ERRNO_NAMES.get(code)}): `
+          + `${e && e.message ? e.message : e}`);
       }
-      fail(errno || Errno.EIO);
+      fail(code);
     }
     return undefined;
   }
