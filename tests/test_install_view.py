@@ -121,10 +121,10 @@ def _of(output, label):
     return [line[len(tag):] for line in output.splitlines() if line.startswith(tag)]
 
 
-def _colcon_wasm(*args, timeout=120):
+def _colcon_wasm(*args, env=None, timeout=120):
+    environ = {k: v for k, v in os.environ.items() if k != 'COLCON_WASM_PREFIX_PATH'}
     return subprocess.run([str(COLCON_WASM)] + [str(a) for a in args], capture_output=True,
-                          text=True, timeout=timeout,
-                          env=dict(os.environ, NODE_PATH='/usr/share/nodejs'))
+                          text=True, timeout=timeout, env=dict(environ, **(env or {})))
 
 
 def test_run_sees_its_install_space_in_node(install):
@@ -154,8 +154,24 @@ def test_launch_keeps_an_ament_prefix_path_the_user_set(install, tmp_path):
         prefix, ament_prefix_path=prefix, resources=['fs_probe'])
 
 
+def test_run_sees_the_underlays_too(install, tmp_path):
+    overlay = tmp_path / 'install_wasm'
+    marker = overlay / 'other_pkg' / 'share' / 'ament_index' / 'resource_index' / 'packages'
+    marker.mkdir(parents=True)
+    (marker / 'other_pkg').write_text('')
+    # fs_probe is the underlay's (COLCON_WASM_PREFIX_PATH, as a sourced setup.sh sets it)
+    done = _colcon_wasm('run', '--install-base', overlay, 'fs_probe', 'fs_probe',
+                        env={'COLCON_WASM_PREFIX_PATH': str(install)})
+    assert done.returncode == 0, done.stdout + done.stderr
+    prefixes = [overlay / 'other_pkg', install / 'fs_probe']
+    assert _of(done.stdout, 'fs_probe-1') == expected_output(
+        install / 'fs_probe', ament_prefix_path=':'.join(map(str, prefixes)),
+        resources=['fs_probe', 'other_pkg']), done.stdout + done.stderr
+
+
 def test_several_bases_overlay_first_in_node(install, overlay, capfd):
     plan = LaunchPlan([NodeProcess('fs_probe', 'fs_probe')])
+    # bases given explicitly (the install space alone has no underlays)
     status = execute(plan, install_base=str(install), bases=[overlay, install],
                      command='test')
     out, err = capfd.readouterr()

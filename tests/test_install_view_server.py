@@ -84,15 +84,19 @@ def test_launch_plan_gives_views_and_prefixes_overlay_first(tmp_path):
     _package(underlay, 'rclcpp')
     plan = LaunchPlan([NodeProcess('demo_nodes', 'talker'),
                        NodeProcess('demo_nodes', 'talker', env={'AMENT_PREFIX_PATH': '/x'})])
-    description = host_plan(plan, InstallSpace(install))
+    description = host_plan(plan, InstallSpace(install, underlays=[]))
     assert description['mounts'] == [{'path': str(install)}]
     assert description['processes'][0]['env'] == {
         'AMENT_PREFIX_PATH': str(install / 'demo_nodes')}
     assert description['processes'][1]['env'] == {'AMENT_PREFIX_PATH': '/x'}
-    description = host_plan(plan, InstallSpace(install), bases=[install, underlay])
+    both = '{}:{}'.format(install / 'demo_nodes', underlay / 'rclcpp')
+    description = host_plan(plan, InstallSpace(install, underlays=[]), bases=[install, underlay])
     assert description['mounts'] == [{'path': str(install)}, {'path': str(underlay)}]
-    assert description['processes'][0]['env']['AMENT_PREFIX_PATH'] == '{}:{}'.format(
-        install / 'demo_nodes', underlay / 'rclcpp')
+    assert description['processes'][0]['env']['AMENT_PREFIX_PATH'] == both
+    # by default: the install space and the underlays it stands on
+    description = host_plan(plan, InstallSpace(install, underlays=[underlay]))
+    assert description['mounts'] == [{'path': str(install)}, {'path': str(underlay)}]
+    assert description['processes'][0]['env']['AMENT_PREFIX_PATH'] == both
 
 
 # ----------------------------------------------------------------- the server
@@ -128,8 +132,9 @@ def tree(tmp_path_factory):
 @pytest.fixture(scope='module')
 def server(tree):
     root, base, underlay, _ = tree
-    srv = make_server(InstallSpace(base), host='127.0.0.1', port=0, launcher_dir=LAUNCHER,
-                      runtime_dir=RUNTIME, runtime_origin='test', bases=[base, underlay])
+    # the page's programs see the install space and the underlays it stands on
+    srv = make_server(InstallSpace(base, underlays=[underlay]), host='127.0.0.1', port=0,
+                      launcher_dir=LAUNCHER, runtime_dir=RUNTIME, runtime_origin='test')
     thread = threading.Thread(target=srv.serve_forever, daemon=True)
     thread.start()
     yield srv

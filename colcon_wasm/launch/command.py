@@ -59,8 +59,8 @@ def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, com
 
     With ``stdin`` the one process of the plan reads this process' standard input.
     ``load_timeout`` (seconds) bounds each wait of a composable node load.
-    ``bases``: the install bases the processes see (default: the install space
-    alone), highest priority first; see ``install_view``.
+    ``bases``: the install bases the processes see (default: the install space's
+    base and underlays), highest priority first; see ``install_view``.
 
     :returns: the exit status (1 for bad input, else the Node host's)
     """

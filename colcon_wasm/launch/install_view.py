@@ -21,12 +21,13 @@ def view_bases(install_space, underlays=()):
     """
     Return the install bases programs see, highest priority first.
 
-    :param install_space: the InstallSpace the command was given
-    :param underlays: more install bases below it (highest priority first)
+    :param install_space: the InstallSpace the command was given: its base,
+      then the underlays it was built on (``InstallSpace.bases``)
+    :param underlays: more install bases below those (highest priority first)
     :returns: absolute Paths, each once
     """
     bases = []
-    for base in [install_space.base] + [Path(u) for u in underlays]:
+    for base in list(install_space.bases) + [Path(u) for u in underlays]:
         base = base.absolute()
         if base not in bases:
             bases.append(base)

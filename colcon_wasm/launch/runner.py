@@ -86,8 +86,8 @@ def host_plan(plan, install_space, *, duration=None, echo=(), stdin=False,
     as with ``ros2 run``; launched processes get none, as with ``ros2 launch``.
     ``load_timeout`` bounds, in seconds, the wait for a container's load_node
     service and for each of its answers.
-    Every process sees ``bases`` (default: the install space alone; highest
-    priority first) read-only at their real paths, and ``AMENT_PREFIX_PATH``
+    Every process sees ``bases`` (default: the install space's base and
+    underlays; highest priority first) read-only at their real paths, and ``AMENT_PREFIX_PATH``
     naming their packages unless its environment sets it.
 
     :raises LaunchError: for an executable that is not in the install space,

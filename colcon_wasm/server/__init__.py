@@ -55,7 +55,7 @@ def make_server(install_space, *, host, port, launcher_dir, runtime_dir, runtime
     Create (and bind) the server for an install space.
 
     :param bases: the install bases the page's programs see read-only, highest
-      priority first (default: the install space alone)
+      priority first (default: the install space's base and underlays)
     """
     site = Site(install_space, launcher_dir=launcher_dir, runtime_dir=runtime_dir,
                 runtime_origin=runtime_origin, runtime_entry=runtime_entry(runtime_dir),

@@ -72,7 +72,7 @@ class Site:
 
         :param install_space: an InstallSpace
         :param bases: the install bases the page's programs see, read-only,
-          highest priority first (default: the install space alone)
+          highest priority first (default: the install space's base and underlays)
         :param launcher_dir: ``templates/launcher`` (page template and modules)
         :param runtime_dir: the directory holding wasm_js's ``index.mjs``
         :param page_modules_dir: where ``cdr.mjs`` and ``tools/`` are served
