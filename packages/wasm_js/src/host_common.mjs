@@ -13,6 +13,8 @@ import { BusClient } from './bus_client.mjs';
 import { FromHost } from './protocol.mjs';
 import { PthreadPool } from './pthread_pool.mjs';
 import { StdinPipe } from './stdin_pipe.mjs';
+import { mountViews } from './view_fs.mjs';
+import { httpViewSource } from './view_source_http.mjs';
 
 /**
  * The platform half of a host.
@@ -25,6 +27,8 @@ import { StdinPipe } from './stdin_pipe.mjs';
  * @property {function(object): void} post post a message to the Runtime
  * @property {function(number): void} close end this worker
  * @property {function(string): Promise<WebAssembly.Module>} compile compile a .wasm URL
+ * @property {function(): import('./view_fs.mjs').ViewSource} [fileViewSource] the host's own
+ *   files, for views without a URL (Node.js)
  */
 
 /** This host's pre-started pthread workers (a warm host's), or null. */
@@ -285,6 +289,28 @@ function writeFiles(files, url) {
 }
 
 /**
+ * Mount the START message's read-only views (see view_fs.mjs): served ones
+ * over HTTP, others from the host's own files. Mounting reads nothing.
+ * @param {Array<{path: string, url?: string}>|undefined} mounts
+ * @param {HostPlatform} platform
+ * @param {string} url the executable, for messages
+ * @param {function(string): void} warn
+ */
+function mountReadOnlyViews(mounts, platform, url, warn) {
+  if (!mounts || !mounts.length) return;
+  const FS = globalThis.FS;
+  // Linked without a file system (-sFILESYSTEM=0, or no file calls at all): it reads no files.
+  if (!FS || typeof FS.mount !== 'function' || typeof FS.createNode !== 'function') return;
+  const views = mounts.map(({ path, url: served }) => {
+    if (served) return { path, source: httpViewSource(served, path) };
+    if (platform.fileViewSource) return { path, source: platform.fileViewSource() };
+    throw new Error(`${url}: the view of '${path}' needs a url here: a browser worker reads views over HTTP `
+      + '(colcon-wasm serve serves install spaces under /fs/)');
+  });
+  mountViews(FS, views, warn);
+}
+
+/**
  * Start the executable described by a START message.
  * @param {object} msg the START message (see protocol.mjs)
  * @param {HostPlatform} platform
@@ -334,6 +360,8 @@ export async function startProcess(msg, platform) {
         if (typeof globalThis.ENV === 'object' && globalThis.ENV) Object.assign(globalThis.ENV, env);
         if (msg.stdin) connectStdin(new StdinPipe(msg.stdin), client);
         writeFiles(msg.files, msg.url);
+        mountReadOnlyViews(msg.mounts, platform, msg.url,
+          (text) => post({ type: FromHost.LOG, stream: 'stderr', text }));
       }],
       onExit: (code) => {
         exit(code, code !== 0, code !== 0 ? `exited with code ${code}` : '');

@@ -16,8 +16,9 @@ export const ToHost = Object.freeze({
   PRELOAD: 'preload',
   /**
    * {type, bus, pid, url, wasmUrl, glueFile, args, env, name, wasmModule, stdin (SharedArrayBuffer
-   * of a StdinPipe, or null), files, scripts (absolute URL -> text: the glue and pthread worker
-   * script, prefetched in browsers; may be empty), busModuleUrl, hostModuleUrl}
+   * of a StdinPipe, or null), files, mounts ([{path, url?}]: read-only views, see view_fs.mjs),
+   * scripts (absolute URL -> text: the glue and pthread worker script, prefetched in browsers;
+   * may be empty), busModuleUrl, hostModuleUrl}
    */
   START: 'start',
 });
