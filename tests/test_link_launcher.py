@@ -200,6 +200,7 @@ def test_a_link_is_stale_when_an_added_archive_or_the_index_changes(tmp_path):
     prefixes = ament_index.package_prefixes([str(base)])
     archive_path = str(base / 'nodes' / 'lib' / 'libnodes.a')
     data = {'schema': report.REPORT_SCHEMA, 'inputs': {
+        'launcher': report.launcher_digest(),
         'archives': report.file_stamps([archive_path]), 'plugin_base_classes': [],
         'hosts_components': True, 'index': report.index_fingerprint(prefixes, [], True)}}
     build = tmp_path / 'build'

@@ -195,7 +195,7 @@ class InstallSpace:
                 "package '{}' in '{}' has no colcon-wasm manifest ('{}'): it was not built "
                 "with 'colcon build --wasm', or it installs no executables".format(
                     package_name, package.prefix, package.manifest_path))
-        names = sorted(n for p, n in found if p == package_name)
+        names = [n for p, n in found if p == package_name]
         raise InstallSpaceError(
             "package '{}' has no executable '{}' (it has: {})".format(
                 package_name, name, ', '.join(names) or 'none'))

@@ -10,7 +10,7 @@
  */
 
 import { BusClient } from './bus_client.mjs';
-import { FromHost } from './protocol.mjs';
+import { FromHost, UNCAUGHT_EXCEPTION } from './protocol.mjs';
 import { PthreadPool } from './pthread_pool.mjs';
 import { StdinPipe } from './stdin_pipe.mjs';
 import { mountViews } from './view_fs.mjs';
@@ -186,17 +186,20 @@ function receiveOutsidePromise(fn) {
 
 /**
  * Describe an uncaught C++ exception: Emscripten throws the thrown object's
- * address (a number). wasm_cpp's `wasm_cpp_exception_text` (linked into every
- * executable that uses the bus) gives its type and what(), as a native
- * std::terminate prints them. Other values (JS errors, traps) give null.
+ * address (a number). `colcon_wasm_exception_text`, which colcon-wasm's link
+ * launcher links into every C++ executable (colcon_wasm/link/launcher.py),
+ * gives its type and what(), as a native std::terminate prints them. Other
+ * values (JS errors, traps) give null.
  * @param {*} value what reached Emscripten's quit()
  * @returns {{type: string, what: string|null}|null}
  */
 export function describeUncaughtException(value) {
   const g = globalThis;
   if (typeof value !== 'number' || typeof g.ExceptionInfo !== 'function') return null;
-  const text = typeof g._wasm_cpp_exception_text === 'function' ? g._wasm_cpp_exception_text : null;
-  if (!text || typeof g.UTF8ToString !== 'function') return { type: '(unknown: not linked with wasm_cpp)', what: null };
+  const text = typeof g._colcon_wasm_exception_text === 'function' ? g._colcon_wasm_exception_text : null;
+  if (!text || typeof g.UTF8ToString !== 'function') {
+    return { type: '(type unknown: the executable was not linked by colcon-wasm\'s link launcher)', what: null };
+  }
   try {
     const type = new g.ExceptionInfo(value).get_type();
     const pointer = text(value, type);
@@ -376,7 +379,9 @@ export async function startProcess(msg, platform) {
           // what a native process prints when std::terminate ends it
           post({ type: FromHost.LOG, stream: 'stderr', text: `terminate called after throwing an instance of '${uncaught.type}'` });
           if (uncaught.what !== null) post({ type: FromHost.LOG, stream: 'stderr', text: `  what():  ${uncaught.what}` });
-          exit(1, true, `uncaught exception of type '${uncaught.type}'${uncaught.what !== null ? `: ${uncaught.what}` : ''}`);
+          const reason = `${UNCAUGHT_EXCEPTION}'${uncaught.type}'${uncaught.what !== null ? `: ${uncaught.what}` : ''}`;
+          exit(1, true, reason);
+          throw new Error(reason);
         }
         throw toThrow;
       },

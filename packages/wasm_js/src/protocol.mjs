@@ -60,3 +60,9 @@ export const FromTools = Object.freeze({
   /** {type, subscription, messages: [{data: Uint8Array, info}]} */
   BATCH: 'batch',
 });
+
+/**
+ * How a host starts the crash reason of an uncaught C++ exception (the
+ * worker's error carries it when the EXIT message has not arrived first).
+ */
+export const UNCAUGHT_EXCEPTION = 'uncaught exception of type ';

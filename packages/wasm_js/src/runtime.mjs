@@ -12,7 +12,7 @@
 import { Bus, BusError, Code, waitAsyncAlive } from './bus.mjs';
 import { H, P, PROC_KIND_NODE, PROC_KIND_RUNTIME, PROC_KIND_TOOLS } from './layout.mjs';
 import { HostWorker, compileWasm, fetchScript, isNode, resolveUrl, siblingUrl } from './platform.mjs';
-import { FromHost, ToHost } from './protocol.mjs';
+import { FromHost, ToHost, UNCAUGHT_EXCEPTION } from './protocol.mjs';
 import { checkedFiles, checkedMounts } from './spawn_options.mjs';
 import { DEFAULT_STDIN_CAPACITY, StdinPipe } from './stdin_pipe.mjs';
 import { Tools } from './tools.mjs';
@@ -509,7 +509,10 @@ export class Runtime {
     worker.on('message', (m) => proc._onMessage(m));
     worker.on('error', (e) => {
       const where = e.filename ? ` (${e.filename}:${e.lineno})` : '';
-      proc._finish({ code: 1, crashed: true, reason: `uncaught error: ${e.message}${where}` });
+      // an uncaught C++ exception arrives described by the host (host_common.mjs)
+      const reason = e.message && e.message.startsWith(UNCAUGHT_EXCEPTION) ? e.message
+        : `uncaught error: ${e.message}${where}`;
+      proc._finish({ code: 1, crashed: true, reason });
     });
     worker.on('exit', ({ code }) => {
       proc._finish({ code, crashed: code !== 0, reason: code !== 0 ? `worker exited with code ${code}` : '' });
