@@ -100,28 +100,35 @@ class Site:
         packages = []
         warnings = []
         types = []
+        versions = {}
+        readable = set()
         for package in self.install_space.packages().values():
             try:
-                executables = package.executables()
                 manifest = package.manifest
             except Exception as e:  # a broken manifest: show it, serve the rest
                 warnings.append(str(e))
                 continue
+            readable.add(package.name)
+            versions[package.name] = (manifest or {}).get('package_version')
             if package.types_path.is_file():
                 types.append(self._url(package, package.types_path))
-            if not executables:
-                continue
+        by_package = {}
+        # what `ros2 run` would run: an overlay's executable before an
+        # underlay's, colcon-wasm's component containers as rclcpp_components'
+        for executable in self.install_space.executables(skip=readable.__contains__):
+            by_package.setdefault(executable.package_name, []).append(executable)
+        for name in sorted(by_package):
             packages.append({
-                'name': package.name,
-                'version': manifest.get('package_version'),
+                'name': name,
+                'version': versions.get(name),
                 'executables': [{
                     'name': e.name,
-                    'url': self._url(package, e.js),
+                    'url': self._url(e.package, e.js),
                     'uses_bus': e.uses_bus,
                     'pthread': e.pthread,
                     'size': sum(f.get('size', 0) for f in e.files),
                     'gzip_size': sum(f.get('gzip_size', 0) for f in e.files),
-                } for e in executables],
+                } for e in by_package[name]],
             })
         return {
             'title': self.title,
