@@ -116,6 +116,9 @@ def test_stock_container_refuses_a_class_no_package_registers(build, tmp_path):
     assert done.returncode != 0
     assert "Failed to load node 'talker' of type 'composition_cases::Nobody' in container " \
         "'/box'" in out, out[-4000:]
+    # with what the container does host
+    assert '(the container was linked with: ' in out
+    assert 'composition_cases/composition_cases::Talker' in out
     assert "Loaded node '/listener' in container '/box'" in out
 
 

@@ -96,6 +96,7 @@ def host_plan(plan, install_space, *, duration=None, echo=(), stdin=False,
     bases = view_bases(install_space) if bases is None else [Path(b) for b in bases]
     prefixes = ament_prefixes(bases)
     processes = []
+    hosted = {}
     for process in plan.processes:
         try:
             executable = install_space.executable(process.package, process.executable)
@@ -108,11 +109,21 @@ def host_plan(plan, install_space, *, duration=None, echo=(), stdin=False,
         entry['uses_bus'] = executable.uses_bus
         entry['env'] = program_environment(entry['env'], prefixes)
         processes.append(entry)
+        # the components the link launcher linked into a container (its manifest)
+        hosted[entry['label']] = [
+            '{}/{}'.format(c['package'], c['class'])
+            for c in executable.entry.get('linked', {}).get('components', [])]
     if plan.loads:
         _check_load_node_types(install_space, plan.loads[0])
+    loads = []
+    for load in plan.loads:
+        entry = load.to_json()
+        entry['hosts'] = sorted(
+            {c for label in entry['containers'] for c in hosted.get(label, [])})
+        loads.append(entry)
     return {
         'processes': processes,
-        'loads': [load.to_json() for load in plan.loads],
+        'loads': loads,
         'load_timeout': load_timeout,
         'mounts': view_mounts(bases),
         'duration': duration,
