@@ -18,40 +18,21 @@ through `colcon-wasm launch` and in Chromium through the page of
   YAML parameters file of the install space.
 """
 
-from pathlib import Path
-import subprocess
-import sys
-
-from corpus_build import CORPUS_UP_TO
 from corpus_build import corpus_build
+from corpus_build import CORPUS_UP_TO
+from corpus_scenarios import ARM
+from corpus_scenarios import config
+from corpus_scenarios import run_scenario
+from corpus_scenarios import STATIC_SENSOR
 import pytest
 from served_page import explain_page
 from served_page import ServedPage
-
-COLCON_WASM = Path(sys.executable).parent / 'colcon-wasm'
-
-"""The transforms two_link.urdf gives for shoulder=0.5 (rad, about z)."""
-STATIC_SENSOR = 'TF /tf_static base_link->sensor 0.100 0.000 0.200 0.000 0.000 0.000 1.000'
-ARM = 'TF /tf base_link->arm 0.000 0.000 0.500 0.000 0.000 0.247 0.969'
 
 
 @pytest.fixture(scope='module')
 def build():
     """Get the (cached) corpus overlay."""
     return corpus_build()
-
-
-def _launch(build, tmp_path, text, seconds):
-    path = tmp_path / 'test.launch.xml'
-    path.write_text(text)
-    done = subprocess.run(
-        [str(COLCON_WASM), 'launch', '--install-base', str(build.install), str(path),
-         '--duration', str(seconds)], capture_output=True, text=True, timeout=180)
-    return done, done.stdout + done.stderr
-
-
-def _config(build, name):
-    return build.install / 'corpus_probe' / 'share' / 'corpus_probe' / 'config' / name
 
 
 def test_every_listed_package_was_built(build):
@@ -67,48 +48,15 @@ def test_every_listed_package_was_built(build):
     assert 'rclcpp' not in build.packages and 'rmw_wasm_cpp' not in build.packages
 
 
-def test_static_transform_publisher_heard_by_tf2_echo_in_node(build, tmp_path):
-    done, out = _launch(build, tmp_path, '''<launch>
-  <node pkg="tf2_ros" exec="static_transform_publisher"
-        args="--x 1 --y 2 --z 3 --yaw 0.5 --frame-id world --child-frame-id robot"/>
-  <node pkg="tf2_ros" exec="tf2_echo" args="world robot"/>
-</launch>''', 5)
-    assert '- Translation: [1.000, 2.000, 3.000]' in out, out[-3000:]
-    assert '- Rotation: in RPY (radian) [0.000, -0.000, 0.500]' in out
-
-
-def test_robot_state_publisher_in_node(build, tmp_path):
-    urdf = _config(build, 'two_link.urdf').read_text()
-    params = tmp_path / 'rsp.yaml'
-    params.write_text('robot_state_publisher:\n  ros__parameters:\n    robot_description: |\n'
-                      + ''.join(f'      {line}\n' for line in urdf.splitlines()))
-    done, out = _launch(build, tmp_path, f'''<launch>
-  <node pkg="robot_state_publisher" exec="robot_state_publisher" name="robot_state_publisher">
-    <param from="{params}"/>
-  </node>
-  <node pkg="corpus_probe" exec="corpus_probe" args="joint_states shoulder=0.5"/>
-  <node pkg="corpus_probe" exec="corpus_probe" args="tf"/>
-</launch>''', 6)
-    assert 'got segment arm' in out, out[-3000:]
-    assert STATIC_SENSOR in out, out[-3000:]
-    assert ARM in out, out[-3000:]
-
-
-def test_diagnostic_aggregator_loads_its_analyzers_in_node(build, tmp_path):
-    done, out = _launch(build, tmp_path, f'''<launch>
-  <node pkg="diagnostic_aggregator" exec="aggregator_node" name="analyzers">
-    <param from="{_config(build, 'analyzers.yaml')}"/>
-  </node>
-  <node pkg="corpus_probe" exec="corpus_probe" args="diagnostics"/>
-</launch>''', 6)
-    assert "Initialized analyzer 'Motors' with path '/Robot/Motors'" in out, out[-3000:]
-    assert 'AGG /Robot/Motors/motor_left level=1 motor hot' in out, out[-3000:]
-    assert 'AGG /Robot/Sensors/imu level=0 imu fine' in out
-    assert 'AGG /Robot level=1 Warning' in out
+@pytest.mark.parametrize('scenario', [
+    'static_transform', 'robot_state_publisher', 'diagnostic_aggregator'])
+def test_runs_in_node(build, tmp_path, scenario):
+    missing, out = run_scenario(scenario, build.install, tmp_path)
+    assert not missing, f'missing {missing} in:\n{out[-4000:]}'
 
 
 def test_the_three_in_chromium(build):
-    urdf = _config(build, 'two_link.urdf').read_text()
+    urdf = config(build.install, 'two_link.urdf').read_text()
     with ServedPage(build.install) as page:
         result = page.run([
             {'start': 'stp', 'pkg': 'tf2_ros', 'exe': 'static_transform_publisher',
@@ -124,7 +72,8 @@ def test_the_three_in_chromium(build):
             {'wait': 'tf', 'text': STATIC_SENSOR},
             {'wait': 'tf', 'text': ARM},
             {'start': 'agg', 'pkg': 'diagnostic_aggregator', 'exe': 'aggregator_node',
-             'args': ['--ros-args', '--params-file', str(_config(build, 'analyzers.yaml'))]},
+             'args': ['--ros-args', '--params-file',
+                      str(config(build.install, 'analyzers.yaml'))]},
             {'start': 'diag', 'pkg': 'corpus_probe', 'exe': 'corpus_probe',
              'args': ['diagnostics']},
             {'wait': 'diag', 'text': 'AGG /Robot/Motors/motor_left level=1 motor hot'},

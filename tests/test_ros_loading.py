@@ -51,10 +51,9 @@ def test_linktime_composition_finds_the_linked_components(platform):
     ])
     assert report['ok'], explain(report)
     text = '\n'.join(lines(report, 'composed'))
-    assert 'Instantiate class rclcpp_components::NodeFactoryTemplate<composition_cases::Talker>' \
-        in text
-    assert 'Instantiate class rclcpp_components::NodeFactoryTemplate<composition_cases::Listener>' \
-        in text
+    factory = 'Instantiate class rclcpp_components::NodeFactoryTemplate<composition_cases::'
+    assert factory + 'Talker>' in text
+    assert factory + 'Listener>' in text
 
 
 def test_plain_node_of_the_component_library_runs(platform):
@@ -70,7 +69,7 @@ def test_plain_node_of_the_component_library_runs(platform):
 # `colcon-wasm launch` / `run` in Node.js, the page of `colcon-wasm serve` in
 # Chromium. Both need the install space's ament index at run time.
 
-CONTAINER_LAUNCH = '''<launch>
+CONTAINER_LAUNCH = """<launch>
   <node_container pkg="rclcpp_components" exec="component_container" name="box" namespace="/">
     <composable_node pkg="composition_cases" plugin="composition_cases::Talker" name="talker"/>
     <composable_node pkg="rmw_wasm_cpp_node_tests" plugin="rmw_wasm_cpp_node_tests::Listener"
@@ -79,7 +78,7 @@ CONTAINER_LAUNCH = '''<launch>
     </composable_node>
   </node_container>
 </launch>
-'''
+"""
 
 
 def _colcon_wasm(build, *args, timeout=120):
@@ -150,7 +149,7 @@ def test_uncaught_exception_shows_its_type_and_what(build):
     assert "terminate called after throwing an instance of 'pluginlib::LibraryLoadException'" \
         in out, out
     assert 'what():  According to the loaded plugin descriptions the class nope' in out
-    assert "process has died [exit code 1, uncaught exception of type " \
+    assert 'process has died [exit code 1, uncaught exception of type ' \
         "'pluginlib::LibraryLoadException': According to" in out, out
 
 
