@@ -198,7 +198,7 @@ def test_rebuild_with_colcon_options(demo, fresh, tmp_path):
     assert 'up to date' in completed.stdout or 'Finished' in completed.stdout, \
         completed.stdout[-3000:]
     log = (demo / 'log' / 'latest_build' / 'logger_all.log').read_text()
-    assert "parallel_workers=2" in log, log[:3000]
+    assert 'parallel_workers=2' in log, log[:3000]
 
 
 def test_native_build_leaves_the_wasm_spaces_alone(demo, fresh, tmp_path):

@@ -59,20 +59,21 @@ def test_default_recipe_is_valid():
 
 
 def test_overlays_change_system_rules_and_python_only_skips(tmp_path):
-    overlay = _write(tmp_path, '''
+    overlay = _write(tmp_path, """
 skip:
   rclpy: native only here
 system:
   eigen: {builtin: someone else provides it}
   libopencv-dev: {workspace: opencv, debian: libopencv-dev, note: from src/opencv}
-''')
+""")
     recipe = load_recipe([overlay])
     assert recipe.skip_reason('rclpy') == 'native only here'
     assert not recipe.is_python_only('rclpy')
     assert recipe.system.rule('eigen').kind == 'builtin'
     rule = recipe.system.rule('libopencv-dev')
-    assert (rule.workspace, rule.debian, rule.note) == ('opencv', 'libopencv-dev', 'from src/opencv')
-    assert "opencv" in rule.describe()
+    assert (rule.workspace, rule.debian, rule.note) == (
+        'opencv', 'libopencv-dev', 'from src/opencv')
+    assert 'opencv' in rule.describe()
 
 
 @pytest.mark.parametrize('text, line, message', [
