@@ -172,3 +172,37 @@ def test_stock_container_and_pluginlib_in_chromium(build):
     assert result['ok'], explain_page(result)
     assert any('Load Library: ' in line and 'libcase_components.a' in line
                for line in result['logs']['box'])
+
+
+def test_stock_container_lists_and_unloads_in_node(build):
+    platform = Platform('node', build)
+    probe = platform.exe('rmw_wasm_cpp_node_tests', 'probe')
+    view = platform.view()
+
+    def step(name, *args):
+        return {'spawn': name, 'exe': probe, 'args': list(args), **view}
+    report = platform.run([
+        {'spawn': 'box', 'exe': platform.exe('rclcpp_components', 'component_container'),
+         'args': ['--ros-args', '-r', '__node:=box'], **view},
+        step('load1', 'load_component', '/box', 'composition_cases',
+             'composition_cases::Talker'),
+        {'exit': 'load1'},
+        step('load2', 'load_component', '/box', 'rmw_wasm_cpp_node_tests',
+             'rmw_wasm_cpp_node_tests::Listener'),
+        {'exit': 'load2'},
+        step('list1', 'list_components', '/box'),
+        {'exit': 'list1'},
+        step('unload', 'unload_component', '/box', '1'),
+        {'exit': 'unload'},
+        step('list2', 'list_components', '/box'),
+        {'exit': 'list2'},
+    ])
+    assert report['ok'], explain(report)
+    assert 'LOADED /case_talker id 1' in ' '.join(lines(report, 'load1'))
+    assert 'LOADED /component_listener id 2' in ' '.join(lines(report, 'load2'))
+    first = ' '.join(lines(report, 'list1'))
+    assert 'LISTED /case_talker id 1' in first and 'LISTED /component_listener id 2' in first
+    assert 'UNLOADED 1' in ' '.join(lines(report, 'unload'))
+    second = ' '.join(lines(report, 'list2'))
+    assert 'LISTED 1 nodes' in second and 'case_talker' not in second
+
