@@ -127,8 +127,9 @@ class Platform:
 
     def view(self):
         """
-        Get what `colcon-wasm run` gives a program (Node.js): read-only views of
-        the install bases and AMENT_PREFIX_PATH, for a spawn step.
+        Get what `colcon-wasm run` gives a program in Node.js, for a spawn step.
+
+        That is read-only views of the install bases, and AMENT_PREFIX_PATH.
         """
         from colcon_wasm.launch.install_space import InstallSpace
         from colcon_wasm.launch.install_view import ament_prefixes

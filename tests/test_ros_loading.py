@@ -205,4 +205,3 @@ def test_stock_container_lists_and_unloads_in_node(build):
     assert 'UNLOADED 1' in ' '.join(lines(report, 'unload'))
     second = ' '.join(lines(report, 'list2'))
     assert 'LISTED 1 nodes' in second and 'case_talker' not in second
-
