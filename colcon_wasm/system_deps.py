@@ -126,15 +126,15 @@ def _rosdep_debian_package(key):
 
 
 def describe_missing(pkg_name, key, rule=None):
-    """Say what a package needs and what to do, for a key with no build."""
+    """Say what a package needs and what to do, for a name with no build."""
     debian = (rule.debian if rule is not None else None) or _rosdep_debian_package(key)
-    system = f' ({debian})' if debian else ''
+    system = f' (rosdep: {debian})' if debian else ''
     return (
-        f"package '{pkg_name}' needs rosdep key '{key}'{system}, which has no "
-        'WebAssembly build in this workspace: add its sources to the workspace '
-        f"(a CMake package named '{key}'), describe it in a recipe overlay "
-        f"('system: {{{key}: ...}}', recipes/schema.md), or skip the package "
-        f"(recipe: 'skip: {{{pkg_name}: REASON}}', or --packages-skip {pkg_name})")
+        f"package '{pkg_name}' needs '{key}'{system}, which is neither a package of the "
+        'workspace or its underlays nor a rosdep key with a WebAssembly build: add its '
+        f"sources to the workspace (a package named '{key}'), describe the rosdep key "
+        f"in a recipe overlay ('system: {{{key}: ...}}', recipes/schema.md), or skip the "
+        f"package (recipe: 'skip: {{{pkg_name}: REASON}}', or --packages-skip {pkg_name})")
 
 
 def check_system_dependencies(decorators, recipe, known):

@@ -54,6 +54,8 @@ CORPUS = ('ros/pluginlib', 'ros2/tinyxml2_vendor', 'leethomason/tinyxml2')
 
 RCLCPP_UP_TO = (
     'rclcpp', 'rclcpp_action', 'rclcpp_components', 'rclcpp_lifecycle',
+    # what overlays of real packages need too (tests/corpus_build.py)
+    'ament_cmake_auto', 'ros_environment',
     *EXAMPLES, *TEST_PACKAGES)
 
 RCLCPP_SKIP = ()

@@ -60,7 +60,8 @@ def test_workflow_builds_an_underlay_then_executables_on_it():
     core = builds['underlay']
     assert core['upload-install'] == 'true'
     assert set(core['packages-up-to'].split()) == {
-        'rclcpp', 'rclcpp_action', 'rclcpp_components', 'rclcpp_lifecycle'}
+        'rclcpp', 'rclcpp_action', 'rclcpp_components', 'rclcpp_lifecycle',
+        'ament_cmake_auto', 'ros_environment'}
     # the executables: built on the downloaded underlay, from a repos file
     # without the core (else colcon would build the core again)
     overlay = builds['executables']

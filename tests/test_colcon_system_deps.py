@@ -25,8 +25,8 @@ def ws(tmp_path):
 def test_a_key_with_no_wasm_build_is_refused_before_configure(ws):
     completed = colcon(ws, 'build', '--wasm', '--packages-select', 'needs_opencv', check=False)
     assert completed.returncode != 0
-    assert "package 'needs_opencv' needs rosdep key 'libopencv-dev'" in completed.stdout
-    assert 'has no WebAssembly build in this workspace: add its sources to the workspace' \
+    assert "package 'needs_opencv' needs 'libopencv-dev'" in completed.stdout
+    assert 'nor a rosdep key with a WebAssembly build: add its sources to the workspace' \
         in completed.stdout
     assert '--packages-skip needs_opencv' in completed.stdout
     # nothing was configured, and run-only keys (python3-numpy) are not checked
