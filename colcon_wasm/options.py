@@ -11,7 +11,7 @@ import sys
 from colcon_core.environment_variable import EnvironmentVariable
 from colcon_wasm import resources
 from colcon_wasm.testing.options import add_wasm_test_arguments
-from colcon_wasm.testing.options import test_cmake_arguments
+from colcon_wasm.testing.options import cmake_arguments_for_tests
 from colcon_wasm.testing.options import TestSettings
 
 OPT_LEVELS = ('1', '2', '3', 's', 'z')
@@ -168,7 +168,7 @@ def cmake_arguments(*, emscripten, settings, install_base, rule,
         f'-DCOLCON_WASM_OPT_LEVEL={settings.opt_level}',
         f'-DCOLCON_WASM_LINK_OPT_LEVEL={settings.link_opt_level}',
         # before the initial cache, which reads them (tests, fault injection)
-        *test_cmake_arguments(settings.testing, project_name, rule),
+        *cmake_arguments_for_tests(settings.testing, project_name, rule),
         '-C', str(resources.file('toolchains', 'wasm-ros-cache.cmake')),
         '-DCMAKE_TOOLCHAIN_FILE=' + str(
             resources.file('toolchains', 'wasm-ros.cmake')),

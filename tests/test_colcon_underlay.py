@@ -13,7 +13,6 @@ refused with what to do.
 
 import json
 import os
-from pathlib import Path
 import shutil
 import subprocess
 

@@ -73,4 +73,3 @@ class WasmTestResultDecorator(ArgumentParserDecorator):
             parsed.test_result_base = str(base)
             _check_existing_dir(self._parser, parsed.test_result_base)
         return parsed
-

@@ -37,7 +37,7 @@ from colcon_wasm.system_deps import add_system_packages
 from colcon_wasm.system_deps import check_system_dependencies
 from colcon_wasm.system_deps import system_cmake_args
 from colcon_wasm.system_deps import SYSTEM_RULE_KEY
-from colcon_wasm.testing.options import test_recipe_overlays
+from colcon_wasm.testing.options import recipe_overlays_for_tests
 from colcon_wasm.testing.verb import is_test_verb
 from colcon_wasm.testing.verb import prepare_test_verb
 from colcon_wasm.toolchain import find_emscripten
@@ -84,7 +84,7 @@ def get_recipe(args):
     recipe = getattr(args, _RECIPE_ATTR, None)
     if recipe is None:
         try:
-            recipe = load_recipe(test_recipe_overlays(args)
+            recipe = load_recipe(recipe_overlays_for_tests(args)
                                  + list(getattr(args, 'wasm_recipe', None) or []))
         except ColconWasmError as e:
             raise SystemExit(exit_message(e)) from e

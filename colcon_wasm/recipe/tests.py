@@ -7,13 +7,13 @@ The `tests` key of a package rule (recipes/schema.md): its tests in WebAssembly.
     packages:
       rcutils:
         tests:
-          off: its tests need mimick_vendor (...)
+          not-built: its tests need mimick_vendor (...)
       rcl:
         tests:
           not-applicable:
             test_signal_handler*: installs a SIGINT handler; ...
 
-* `off`: the reason why `--wasm-tests` without package names leaves this
+* `not-built`: the reason why `--wasm-tests` without package names leaves this
   package's tests unbuilt (naming the package still builds them);
 * `not-applicable`: test names (CTest names, globs) that `colcon test --wasm`
   does not run, each with the reason; the results list them as skipped with
@@ -22,7 +22,7 @@ The `tests` key of a package rule (recipes/schema.md): its tests in WebAssembly.
 
 from fnmatch import fnmatchcase
 
-TESTS_KEYS = ('off', 'not-applicable')
+TESTS_KEYS = ('not-built', 'not-applicable')
 
 
 class TestsRule:
@@ -32,14 +32,24 @@ class TestsRule:
 
     def __init__(self):
         """Create an empty rule: tests are built and every test runs."""
-        self.off = None
+        self.not_built = None
         self.not_applicable = {}
 
     def merge(self, other):
-        """Add an overlay's rule (`off` replaces, `not-applicable` is updated)."""
-        if other.off is not None:
-            self.off = other.off
+        """Add an overlay's rule (`not-built` replaces, `not-applicable` is updated)."""
+        if other.not_built is not None:
+            self.not_built = other.not_built
         self.not_applicable.update(other.not_applicable)
+
+    def unlisted_not_applicable(self, test_names):
+        """
+        Get the not-applicable tests CTest does not list (they were not built).
+
+        Only exact names (no glob characters) can be reported without a test
+        of that name: {name: reason}.
+        """
+        return {name: reason for name, reason in self.not_applicable.items()
+                if name not in test_names and not any(c in name for c in '*?[')}
 
     def not_applicable_reason(self, test_name):
         """Get why a test is not run in WebAssembly, or None when it is run."""
@@ -64,8 +74,9 @@ def check_tests_rule(path, parent, dotted, value, *, fail, check_keys, check_str
     check_mapping(path, parent, 'tests', dotted, value)
     check_keys(path, value, f'{dotted}.', TESTS_KEYS)
     rule = TestsRule()
-    if 'off' in value:
-        rule.off = check_string(path, value, 'off', f'{dotted}.off', value['off'])
+    if 'not-built' in value:
+        rule.not_built = check_string(
+            path, value, 'not-built', f'{dotted}.not-built', value['not-built'])
     if 'not-applicable' in value:
         mapping = value['not-applicable']
         check_mapping(path, value, 'not-applicable', f'{dotted}.not-applicable', mapping)

@@ -17,7 +17,6 @@ from colcon_core.task import get_task_extension
 from colcon_core.task import TaskExtensionPoint
 from colcon_wasm.plan import PLAN_KEY
 from colcon_wasm.testing import results
-from colcon_wasm.testing.options import TestSettings
 
 logger = colcon_logger.getChild(__name__)
 
@@ -88,7 +87,7 @@ class WasmTestTask(TaskExtensionPoint):
             return 1
         self._prepare_environment(node, args, plan)
 
-        settings = TestSettings(args)
+        settings = plan.settings.testing
         env = await get_command_environment('test', args.build_base, self.context.dependencies)
         tests = results.list_tests(CTEST_EXECUTABLE, args.build_base, env=env)
         not_applicable = {}
@@ -99,6 +98,8 @@ class WasmTestTask(TaskExtensionPoint):
                 logger.info(
                     f"Not running '{test.name}' of '{pkg.name}': not applicable in "
                     f'WebAssembly ({reason})')
+        # tests the build left out (e.g. rcl's tests that need mimick) are reported too
+        not_built = plan.rule.tests.unlisted_not_applicable({t.name for t in tests})
         ctest_args = list(args.ctest_args or [])
         if '--timeout' not in ctest_args:
             ctest_args += ['--timeout', f'{settings.timeout:g}']
@@ -115,7 +116,8 @@ class WasmTestTask(TaskExtensionPoint):
         results.write_results(
             package=pkg.name, tests=tests, result_base=result_base,
             default_timeout=f'{settings.timeout:g}', run_started=started,
-            not_applicable=not_applicable, linters=results.package_linters(pkg))
+            not_applicable=dict(not_built, **not_applicable),
+            linters=results.package_linters(pkg))
         return rc
 
     def _built_with_tests(self, pkg_name, args):
@@ -146,10 +148,10 @@ class WasmTestTask(TaskExtensionPoint):
         if node_dir not in path.split(os.pathsep):
             os.environ['PATH'] = node_dir + (os.pathsep + path if path else '')
         if 'WASM_JS_DIR' not in os.environ:
-            install_base = Path(args.install_base)
-            if not args.merge_install:
-                install_base = install_base.parent
-            wasm_js = find_wasm_js([install_base] + list(plan.underlays))
+            # the package's prefix is in the install base (isolated) or is it (merged)
+            install_prefix = Path(args.install_base)
+            wasm_js = find_wasm_js(
+                [install_prefix, install_prefix.parent] + list(plan.underlays))
             if wasm_js is not None:
                 # a test that creates a context makes its own private bus
                 os.environ['WASM_JS_DIR'] = str(wasm_js)

@@ -26,7 +26,7 @@ def add_wasm_test_arguments(parser):
         '--wasm-tests', nargs='*', metavar='PKG', default=None,
         help='Build tests (BUILD_TESTING=ON) for `colcon test --wasm`: of the '
              'named packages, or, without names, of every package built except '
-             "those whose tests the recipe turns off ('tests: off'); gtest and "
+             "those whose tests the recipe does not build ('tests: not-built'); gtest and "
              'gmock tests become Node.js programs')
     parser.add_argument(
         '--wasm-fault-injection', action='store_true',
@@ -80,8 +80,8 @@ class TestSettings:
             if pkg_name in self.packages:
                 return True, None
             return False, 'not named by --wasm-tests'
-        if rule.tests.off:
-            return False, rule.tests.off
+        if rule.tests.not_built:
+            return False, rule.tests.not_built
         return True, None
 
     def describe(self):
@@ -89,7 +89,7 @@ class TestSettings:
         return {'fault_injection': True} if self.fault_injection else {}
 
 
-def test_recipe_overlays(args):
+def recipe_overlays_for_tests(args):
     """Get the recipe overlays `--wasm-tests` and `colcon test` add (before the user's)."""
     if getattr(args, 'wasm_tests', None) is None and \
             getattr(args, 'verb_name', None) != 'test':
@@ -97,7 +97,7 @@ def test_recipe_overlays(args):
     return [resources.file('recipes', TESTS_RECIPE)]
 
 
-def test_cmake_arguments(settings, pkg_name, rule):
+def cmake_arguments_for_tests(settings, pkg_name, rule):
     """
     Get the CMake arguments of the test settings for one package.
 

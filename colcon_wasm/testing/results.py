@@ -164,6 +164,11 @@ def _testsuite(suite, cases):
     return '\n'.join(lines) + '\n'
 
 
+def timed_out(test):
+    """Check if CTest stopped a test at its time limit."""
+    return test.completion == 'Timeout' or test.exit_code == 'Timeout'
+
+
 def describe_outcome(test, default_timeout):
     """
     Say how a test that wrote no result ended, or None when it passed.
@@ -172,7 +177,7 @@ def describe_outcome(test, default_timeout):
     """
     if test.status == 'passed':
         return None, ''
-    if test.completion == 'Timeout' or test.exit_code == 'Timeout':
+    if timed_out(test):
         limit = test.timeout if test.timeout is not None else default_timeout
         return 'failure', (
             f'timed out: CTest stopped it after {test.seconds:.1f} s (its time limit is '
@@ -214,13 +219,21 @@ def write_results(*, package, tests, result_base, default_timeout, run_started,
     for test in tests:
         if test.name in not_applicable or test.status is None:
             continue
+        kind, message = describe_outcome(test, default_timeout)
+        output = test.output if kind else ''
+        case = [(test.name, test.seconds, kind, message, output)]
         result_file = test.ament_result_file
+        if result_file is not None and timed_out(test):
+            # run_test.py, stopped with the test, wrote "The test did not
+            # generate a result file": say what happened instead
+            result_file.parent.mkdir(parents=True, exist_ok=True)
+            result_file.write_text(_testsuite(f'{package}.{test.name}', case))
+            written.append(result_file)
+            continue
         if result_file is not None and result_file.is_file() and \
                 result_file.stat().st_mtime >= run_started - 1:
             continue  # gtest or run_test.py wrote it in this run
-        kind, message = describe_outcome(test, default_timeout)
-        output = test.output if kind else ''
-        write(test.name, [(test.name, test.seconds, kind, message, output)])
+        write(test.name, case)
     for name, reason in sorted(not_applicable.items()):
         write(name, [(name, 0.0, 'skipped', f'not applicable in WebAssembly: {reason}', '')])
     if linters:
@@ -253,4 +266,3 @@ def package_linters(descriptor):
     if 'ament_lint_common' in test_depends:
         linters |= set(AMENT_LINT_COMMON)
     return sorted(linters)
-

@@ -7,10 +7,10 @@
 The test verb has the same package selection as `colcon build`, so the
 `wasm.*` package types (and the `colcon test` task of
 :mod:`colcon_wasm.task.test`) are chosen the same way. What differs: the
-install base is read, not written. Its marker
-(:mod:`colcon_wasm.underlay`) says which underlays it was built on; the
-tests run on them (unless `--wasm-underlay` or `COLCON_WASM_PREFIX_PATH`
-names others), and with the same threads setting.
+install base is read, not written. Its marker says which underlays it was
+built on (:func:`colcon_wasm.underlay.get_underlays`); the tests run on
+them, with their build variables, unless `--wasm-underlay` or
+`COLCON_WASM_PREFIX_PATH` name others.
 """
 
 import os
@@ -19,7 +19,6 @@ from pathlib import Path
 from colcon_wasm.error import ColconWasmError
 from colcon_wasm.error import exit_message
 from colcon_wasm.underlay import get_underlays
-from colcon_wasm.underlay import PREFIX_PATH_VARIABLE
 from colcon_wasm.underlay import read_marker
 from colcon_wasm.underlay import split_native_prefixes
 from colcon_wasm.underlay import underlay_environment
@@ -48,11 +47,7 @@ def prepare_test_verb(args):
             f"'{install_base}' was not built with colcon build --wasm: build the "
             'packages and their tests first (colcon build --wasm --wasm-tests PKG...), '
             'or pass the --install-base of that build'), command=COMMAND))
-    if not getattr(args, 'wasm_underlay', None) and \
-            not os.environ.get(PREFIX_PATH_VARIABLE):
-        args.wasm_underlay = list(marker.get('underlays') or [])
-    if not getattr(args, 'wasm_no_pthread', False):
-        args.wasm_no_pthread = not marker.get('pthread', True)
+    # the underlays it was built on (colcon_wasm.underlay.get_underlays)
     underlays = get_underlays(args)
     kept, removed = split_native_prefixes(os.environ)
     if removed:
