@@ -49,6 +49,14 @@ if(NOT DEFINED AMENT_LINT_AUTO_EXCLUDE)
     ament_cmake_xmllint)
 endif()
 
+# Launch tests (add_launch_test) run Python launch_testing, which is not built
+# for WebAssembly; and launch_testing_ament_cmake needs python_cmake_module,
+# which looks for the target's CPython. Packages find it QUIET (ament_lint_auto
+# does) and go without their launch tests.
+if(NOT DEFINED CMAKE_DISABLE_FIND_PACKAGE_launch_testing_ament_cmake)
+  set(CMAKE_DISABLE_FIND_PACKAGE_launch_testing_ament_cmake TRUE)
+endif()
+
 # The link launcher makes every executable that links gtest or gmock a
 # Node.js test program (colcon_wasm/link/test_link.py).
 get_property(_colcon_wasm_rule GLOBAL PROPERTY RULE_LAUNCH_LINK)
