@@ -11,7 +11,7 @@ import sys
 
 HERE = Path(__file__).resolve().parent
 
-SAMPLE = '''
+SAMPLE = """
 import pytest
 
 def test_runs():
@@ -23,7 +23,7 @@ def test_needs_a_tool():
 @pytest.mark.xfail(reason='known bug', strict=True)
 def test_known_bug():
     assert False
-'''
+"""
 
 
 def run_sample(tmp_path, ci):

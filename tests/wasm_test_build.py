@@ -5,8 +5,9 @@
 The test build of issue 15: tests cross-compiled with `--wasm-tests`, cached.
 
 One `colcon build --wasm` of the Humble snapshot up to
-test_rmw_implementation (the rmw conformance suite), rcl (its own tests)
-and the fixture package wasm_test_cases, with their tests and with fault
+test_rmw_implementation (the rmw conformance suite), rcl (its own tests),
+the fixture package wasm_test_cases and rmw_wasm_cpp_fault_tests, with
+their tests and with fault
 injection (`--wasm-fault-injection`: every package compiled with
 RCUTILS_ENABLE_FAULT_INJECTION, as rcutils' own test build makes its users
 do). The test tooling comes from the corpus snapshot at Humble's versions:
@@ -31,11 +32,16 @@ import sys
 
 from humble_build import humble_build
 from humble_build import REPO
+from rclcpp_build import ExistingBuild
 
-FIXTURE = REPO / 'tests' / 'ros_fixtures' / 'wasm_test_cases'
+"""Packages of this repository added to the workspace (name: folder)."""
+EXTRA = {
+    'wasm_test_cases': REPO / 'tests' / 'ros_fixtures' / 'wasm_test_cases',
+    'rmw_wasm_cpp_fault_tests': REPO / 'tests' / 'rmw' / 'rmw_wasm_cpp_fault_tests',
+}
 
 """The packages whose tests are built and run."""
-TESTED = ('test_rmw_implementation', 'rcl', 'wasm_test_cases')
+TESTED = ('test_rmw_implementation', 'rcl', *EXTRA)
 
 """Repositories of the corpus snapshot: the test tooling at Humble's versions."""
 CORPUS = ('ament/googletest', 'osrf/osrf_testing_tools_cpp', 'ros2/rmw_dds_common')
@@ -46,9 +52,17 @@ COLCON_ARGS = ('--wasm-link-opt-level', '1', '--wasm-fault-injection',
 
 
 def wasm_test_build():
-    """Build (or reuse) the test build; skips when a snapshot is absent."""
-    return humble_build(up_to=TESTED, skip=(), extra={'wasm_test_cases': FIXTURE},
-                        colcon_args=COLCON_ARGS, corpus=CORPUS)
+    """
+    Build (or reuse) the test build; skips when a snapshot is absent.
+
+    A developer can set COLCON_WASM_TEST_WORKSPACE to a workspace built with
+    the same command (see COLCON_ARGS); CI never sets it.
+    """
+    workspace = os.environ.get('COLCON_WASM_TEST_WORKSPACE')
+    if workspace:
+        return ExistingBuild(workspace)
+    return humble_build(up_to=TESTED, skip=(), extra=EXTRA, colcon_args=COLCON_ARGS,
+                        corpus=CORPUS)
 
 
 def colcon_test(build, *packages, extra=(), timeout=1800):
