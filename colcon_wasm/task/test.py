@@ -13,6 +13,7 @@ from colcon_cmake.task.cmake import get_variable_from_cmake_cache
 from colcon_core.logging import colcon_logger
 from colcon_core.plugin_system import satisfies_version
 from colcon_core.shell import get_command_environment
+from colcon_core.subprocess import check_output
 from colcon_core.task import get_task_extension
 from colcon_core.task import TaskExtensionPoint
 from colcon_wasm.plan import PLAN_KEY
@@ -88,8 +89,17 @@ class WasmTestTask(TaskExtensionPoint):
         self._prepare_environment(node, args, plan)
 
         settings = plan.settings.testing
-        env = await get_command_environment('test', args.build_base, self.context.dependencies)
-        tests = results.list_tests(CTEST_EXECUTABLE, args.build_base, env=env)
+        if CTEST_EXECUTABLE is None:
+            logger.error(f"Cannot test '{pkg.name}': no 'ctest' found (install CMake)")
+            return 1
+        try:
+            env = await get_command_environment(
+                'test', args.build_base, self.context.dependencies)
+        except RuntimeError as e:
+            logger.error(str(e))
+            return 1
+        tests = results.parse_test_list(await check_output(
+            [CTEST_EXECUTABLE, '--show-only=json-v1'], cwd=args.build_base, env=env))
         not_applicable = {}
         for test in tests:
             reason = plan.rule.tests.not_applicable_reason(test.name)

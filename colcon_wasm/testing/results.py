@@ -84,8 +84,15 @@ def list_tests(ctest, build_base, env=None):
         stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     if completed.returncode != 0:
         return []
+    return parse_test_list(completed.stdout)
+
+
+def parse_test_list(output):
+    """Read the output of `ctest --show-only=json-v1` (bytes or text)."""
+    if isinstance(output, bytes):
+        output = output.decode(errors='replace')
     try:
-        data = json.loads(completed.stdout.decode(errors='replace'))
+        data = json.loads(output)
     except ValueError:
         return []
     tests = []
@@ -181,9 +188,8 @@ def describe_outcome(test, default_timeout):
         limit = test.timeout if test.timeout is not None else default_timeout
         return 'failure', (
             f'timed out: CTest stopped it after {test.seconds:.1f} s (its time limit is '
-            f'{limit} s: TIMEOUT of the test, or --wasm-test-timeout for tests without '
-            'one); a WebAssembly test that waits forever (a lost wake-up, a join of a '
-            'thread that never ends) never returns by itself')
+            f'{limit} s: the TIMEOUT of the test, or --wasm-test-timeout for tests '
+            'without one)')
     if test.status == 'notrun':
         return 'failure', (
             f'not run: {test.completion or test.exit_code or "CTest did not start it"} '
