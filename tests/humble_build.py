@@ -239,7 +239,7 @@ def humble_build(up_to=BELOW_RMW_UP_TO, skip=BELOW_RMW_SKIP,
     command = [
         'nice', '-n', '10', str(Path(sys.executable).parent / 'colcon'),
         'build', '--wasm', '--parallel-workers', str(os.cpu_count() or 2),
-        '--packages-skip', *skip, '--packages-up-to', *up_to,
+        *(['--packages-skip', *skip] if skip else []), '--packages-up-to', *up_to,
         *(['--wasm-underlay', str(underlay.install)] if underlay else []),
         *colcon_args]
     start = time.monotonic()

@@ -125,6 +125,21 @@ class Platform:
             return str(path)
         return f'{self._browser.base}/install/{path.relative_to(self.install).as_posix()}'
 
+    def view(self):
+        """
+        Get what `colcon-wasm run` gives a program in Node.js, for a spawn step.
+
+        That is read-only views of the install bases, and AMENT_PREFIX_PATH.
+        """
+        from colcon_wasm.launch.install_space import InstallSpace
+        from colcon_wasm.launch.install_view import ament_prefixes
+        from colcon_wasm.launch.install_view import view_bases
+        from colcon_wasm.launch.install_view import view_mounts
+        assert self.name == 'node', 'the scenario page serves no views: use tests/served_page.py'
+        bases = view_bases(InstallSpace(self.install))
+        return {'mounts': view_mounts(bases),
+                'env': {'AMENT_PREFIX_PATH': ':'.join(ament_prefixes(bases))}}
+
     def run(self, steps, runtime=None, timeout=180):
         """Run the steps (see tests/rmw/web/scenario.mjs) and return the report."""
         scenario = {'runtime': runtime or {}, 'steps': steps}

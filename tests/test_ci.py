@@ -36,19 +36,42 @@ def _render(text, inputs):
     return re.sub(r'\$\{\{\s*inputs\.([\w-]+)\s*\}\}', value, text)
 
 
-def test_workflow_uses_the_action_with_declared_inputs():
-    workflow = _load(WORKFLOW)
-    action = _load(ACTION)
-    steps = workflow['jobs']['wasm']['steps']
-    build = next(s for s in steps if s.get('uses', '').endswith(
-        'ci/actions/colcon-wasm-build'))
-    assert (REPO / build['uses']).resolve() == ACTION.parent
-    assert set(build['with']) <= set(action['inputs'])
-    assert (REPO / build['with']['repos-file']).is_file()
-    repos = _load(REPO / build['with']['repos-file'])['repositories']
+def _check_repos(path):
+    repos = _load(path)['repositories']
     for name, entry in repos.items():
         assert entry['type'] == 'git' and entry['url'].endswith('.git'), name
         assert re.fullmatch(r'[0-9a-f]{40}', entry['version']), name
+    return repos
+
+
+def test_workflow_builds_an_underlay_then_executables_on_it():
+    workflow = _load(WORKFLOW)
+    action = _load(ACTION)
+    jobs = workflow['jobs']
+    builds = {}
+    for name, job in jobs.items():
+        build = next(s for s in job['steps'] if s.get('uses', '').endswith(
+            'ci/actions/colcon-wasm-build'))
+        assert (REPO / build['uses']).resolve() == ACTION.parent
+        assert set(build['with']) <= set(action['inputs']), name
+        _check_repos(REPO / build['with']['repos-file'])
+        builds[name] = build['with']
+    # the underlay: the Humble core, uploaded whole
+    core = builds['underlay']
+    assert core['upload-install'] == 'true'
+    assert set(core['packages-up-to'].split()) == {
+        'rclcpp', 'rclcpp_action', 'rclcpp_components', 'rclcpp_lifecycle'}
+    # the executables: built on the downloaded underlay, from a repos file
+    # without the core (else colcon would build the core again)
+    overlay = builds['executables']
+    assert jobs['executables']['needs'] == 'underlay'
+    download = next(s for s in jobs['executables']['steps']
+                    if s.get('uses', '').startswith('actions/download-artifact'))
+    assert download['with']['name'] == core['artifact-name'] + '-underlay'
+    assert overlay['underlay'].startswith(download['with']['path'] + '/')
+    repos = _check_repos(REPO / overlay['repos-file'])
+    assert 'ros2/rclcpp' not in repos and 'ros2/examples' in repos
+    assert overlay['packages-up-to'].startswith('examples_rclcpp')
 
 
 def test_action_installs_this_repository():
@@ -58,22 +81,50 @@ def test_action_installs_this_repository():
     assert 'colcon-wasm doctor' in install
 
 
-def test_build_step_is_a_real_colcon_build(tmp_path):
-    """Run the action's build script on the fixture workspace."""
+def _run_build_step(ws, tmp_path, **inputs):
+    """Run the action's build and pack scripts in a workspace."""
     action = _load(ACTION)
     defaults = {k: str(v.get('default', '')) for k, v in
                 action['inputs'].items()}
-    inputs = dict(defaults, **{'packages-up-to': 'calc_app',
-                               'colcon-args': '--parallel-workers 1'})
-    script = _render(_step(action, 'colcon build --wasm')['run'], inputs)
-    ws = copy_fixture('ws_basic', tmp_path)
+    inputs = dict(defaults, **inputs)
     env = dict(os.environ, PATH=f'{BIN}:{os.environ["PATH"]}',
                COLCON_HOME=str(tmp_path / '.colcon'))
     env.pop('COLCON_DEFAULTS_FILE', None)
-    completed = subprocess.run(['bash', '-e', '-c', script], cwd=ws, env=env,
-                               capture_output=True, text=True, timeout=900)
-    assert completed.returncode == 0, completed.stdout[-3000:] + \
-        completed.stderr[-3000:]
+    env.pop('COLCON_WASM_PREFIX_PATH', None)
+    steps = ['colcon build --wasm']
+    if inputs['upload-install'] == 'true':
+        steps.append('Pack the install space')
+    for name in steps:
+        script = _render(_step(action, name)['run'], inputs)
+        completed = subprocess.run(['bash', '-e', '-c', script], cwd=ws, env=env,
+                                   capture_output=True, text=True, timeout=900)
+        assert completed.returncode == 0, completed.stdout[-3000:] + \
+            completed.stderr[-3000:]
+    return action, inputs
+
+
+def test_build_step_is_a_real_colcon_build_on_a_real_underlay(tmp_path):
+    """Run the action's scripts: an underlay, packed and unpacked, then an overlay."""
+    core = copy_fixture('ws_basic', tmp_path / 'core')
+    shutil.rmtree(core / 'src' / 'calc_app')
+    _run_build_step(core, tmp_path, **{
+        'packages-up-to': 'calc_lib', 'colcon-args': '--parallel-workers 1',
+        'upload-install': 'true'})
+    unpacked = tmp_path / 'downloaded'
+    unpacked.mkdir()
+    subprocess.run(['tar', '-xzf', str(core / 'install_wasm.tar.gz'), '-C', str(unpacked)],
+                   check=True)
+    shutil.rmtree(core)  # the overlay must not need the underlay's workspace
+    ws = copy_fixture('ws_basic', tmp_path)
+    shutil.rmtree(ws / 'src' / 'calc_lib')
+    action, inputs = _run_build_step(ws, tmp_path, **{
+        'packages-up-to': 'calc_app', 'colcon-args': '--parallel-workers 1',
+        'underlay': str(unpacked / 'install_wasm')})
+    # calc_lib came from the moved underlay
+    assert not (ws / 'install_wasm' / 'calc_lib').exists()
+    result = subprocess.run(['node', str(ws / 'install_wasm/calc_app/bin/calc.js'), '6', '3'],
+                            capture_output=True, text=True, timeout=60)
+    assert result.stdout.strip() == 'result 2', result.stdout + result.stderr
     # the upload patterns find the executables and the manifests
     upload = _step(action, 'Upload .wasm, .js and manifests')['with']['path']
     found = set()

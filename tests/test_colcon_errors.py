@@ -86,7 +86,7 @@ def test_depending_on_a_skipped_dds_package(tmp_path):
     assert result.returncode != 0
     line = _one_error_line(result.stdout)
     assert '1 dependencies on packages that --wasm skips' in line
-    assert "package 'dds_user' depends on 'fastcdr', which --wasm skips " \
+    assert "package 'dds_user' needs 'fastcdr' to build, which --wasm skips " \
         '(Fast DDS serialization library' in result.stdout
     assert 'drop-depends: [DEP]' in line
     assert _built_packages(ws) == []

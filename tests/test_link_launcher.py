@@ -68,7 +68,7 @@ def test_archive_members_keep_duplicate_names_apart(emscripten, tmp_path):
 def test_registrations_and_main_are_recognized(emscripten, tmp_path):
     # the shape of a class_loader registration object: a definition of
     # class_loader::impl::registerPlugin<Derived, Base>
-    obj = _compile(emscripten, tmp_path, 'reg', '''
+    obj = _compile(emscripten, tmp_path, 'reg', """
 namespace class_loader { namespace impl {
 template<typename D, typename B> void registerPlugin(const char *) {}
 }}
@@ -76,7 +76,7 @@ namespace demo { struct Derived {}; }
 struct Base {};
 static int proxy = (class_loader::impl::registerPlugin<demo::Derived, Base>("x"), 0);
 int main() { return proxy; }
-''')
+""")
     record = symbols.SymbolReader(
         str(emscripten.llvm_tool('llvm-nm')), str(tmp_path / 'cache')).read(str(obj))[0]
     assert record.defines_main
@@ -200,6 +200,7 @@ def test_a_link_is_stale_when_an_added_archive_or_the_index_changes(tmp_path):
     prefixes = ament_index.package_prefixes([str(base)])
     archive_path = str(base / 'nodes' / 'lib' / 'libnodes.a')
     data = {'schema': report.REPORT_SCHEMA, 'inputs': {
+        'launcher': report.launcher_digest(),
         'archives': report.file_stamps([archive_path]), 'plugin_base_classes': [],
         'hosts_components': True, 'index': report.index_fingerprint(prefixes, [], True)}}
     build = tmp_path / 'build'

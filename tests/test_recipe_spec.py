@@ -37,16 +37,59 @@ def test_default_recipe_is_valid():
     rule = recipe.rule('rcutils')
     assert [p.file.name for p in rule.patches] == [
         '0001-strerror_r-xsi-under-emscripten.patch',
-        '0002-shared_library-no-dlinfo-under-emscripten.patch']
+        '0002-shared_library-no-dlinfo-under-emscripten.patch',
+        '0003-shared_library-linked-libraries-under-emscripten.patch']
     assert rule.patches[0].applies_to('5.1.6')
     assert not rule.patches[0].applies_to('6.0.0')
     assert 'yaml' in recipe.rule('libyaml_vendor').depends
     assert recipe.rule('libyaml_vendor').project_include.is_file()
     assert recipe.rule('no_such_package').cmake_args == []
+    # Python parts: rclpy is dropped from C/C++ packages, tf2_py is skipped
+    assert recipe.is_python_only('rclpy') and recipe.is_python_only('python_cmake_module')
+    assert not recipe.is_python_only('fastcdr') and not recipe.is_python_only('rclcpp')
+    assert recipe.skip_reason('tf2_py') and not recipe.is_python_only('tf2_py')
+    # system dependencies
+    assert recipe.system.rule('libconsole-bridge-dev').workspace == 'console_bridge'
+    tinyxml = recipe.system.rule('tinyxml')
+    assert tinyxml.kind == 'debian-source' and tinyxml.source_package == 'tinyxml'
+    assert tinyxml.build_file.name == 'CMakeLists.txt' and tinyxml.build_file.is_file()
+    assert recipe.system.rule('eigen').kind == 'host-headers'
+    assert recipe.system.rule('python3-yaml').kind == 'host-tool'  # a glob
+    assert recipe.system.rule('libopencv-dev') is None
+
+
+def test_overlays_change_system_rules_and_python_only_skips(tmp_path):
+    overlay = _write(tmp_path, """
+skip:
+  rclpy: native only here
+system:
+  eigen: {builtin: someone else provides it}
+  libopencv-dev: {workspace: opencv, debian: libopencv-dev, note: from src/opencv}
+""")
+    recipe = load_recipe([overlay])
+    assert recipe.skip_reason('rclpy') == 'native only here'
+    assert not recipe.is_python_only('rclpy')
+    assert recipe.system.rule('eigen').kind == 'builtin'
+    rule = recipe.system.rule('libopencv-dev')
+    assert (rule.workspace, rule.debian, rule.note) == (
+        'opencv', 'libopencv-dev', 'from src/opencv')
+    assert 'opencv' in rule.describe()
 
 
 @pytest.mark.parametrize('text, line, message', [
     ('bogus: 1\n', 1, "'bogus': unknown key, expected one of: recipe"),
+    ('system:\n  foo: {workspace: a, builtin: b}\n', 2,
+     "'system.foo': expected exactly one of workspace, host-headers, debian-source, "
+     'host-tool, builtin, got workspace, builtin'),
+    ('system:\n  foo: {debian: x}\n', 2, "'system.foo': expected exactly one of"),
+    ('system:\n  foo:\n    host-headers: {cmake-args: []}\n', 3,
+     "'system.foo.host-headers': missing key 'check'"),
+    ('system:\n  foo:\n    debian-source: {package: foo, build: nope.txt}\n', 3,
+     "'system.foo.debian-source.build': CMake file"),
+    ('system:\n  foo: {workspace: a, colour: b}\n', 2,
+     "'system.foo.colour': unknown key, expected one of: workspace"),
+    ('skip:\n  foo: {reason: x, python-only: maybe}\n', 2,
+     "'skip.foo.python-only': expected true or false, got str 'maybe'"),
     ('recipe:\n  name: [a]\n', 2,
      "'recipe.name': expected a non-empty string, got a list"),
     ('skip:\n  fastcdr: 3\n', 2,
@@ -128,7 +171,8 @@ def test_overlay_merges(tmp_path):
     assert rule.cmake_args == ['-DMINE=ON']
     assert [p.file.name for p in rule.patches] == [
         '0001-strerror_r-xsi-under-emscripten.patch',
-        '0002-shared_library-no-dlinfo-under-emscripten.patch', 'x.patch']
+        '0002-shared_library-no-dlinfo-under-emscripten.patch',
+        '0003-shared_library-linked-libraries-under-emscripten.patch', 'x.patch']
     assert rule.patches[-1].file == (tmp_path / 'x.patch').resolve()
     assert recipe.rule('libyaml_vendor').depends == ['yaml', 'extra']
     assert recipe.files[-1] == Path(overlay).resolve()

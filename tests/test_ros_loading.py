@@ -51,10 +51,9 @@ def test_linktime_composition_finds_the_linked_components(platform):
     ])
     assert report['ok'], explain(report)
     text = '\n'.join(lines(report, 'composed'))
-    assert 'Instantiate class rclcpp_components::NodeFactoryTemplate<composition_cases::Talker>' \
-        in text
-    assert 'Instantiate class rclcpp_components::NodeFactoryTemplate<composition_cases::Listener>' \
-        in text
+    factory = 'Instantiate class rclcpp_components::NodeFactoryTemplate<composition_cases::'
+    assert factory + 'Talker>' in text
+    assert factory + 'Listener>' in text
 
 
 def test_plain_node_of_the_component_library_runs(platform):
@@ -64,3 +63,145 @@ def test_plain_node_of_the_component_library_runs(platform):
         {'graphWait': {'node': '/plain_node', 'present': True}},
     ])
     assert report['ok'], explain(report)
+
+
+# ---- the stock component containers and pluginlib, through the user's paths:
+# `colcon-wasm launch` / `run` in Node.js, the page of `colcon-wasm serve` in
+# Chromium. Both need the install space's ament index at run time.
+
+CONTAINER_LAUNCH = """<launch>
+  <node_container pkg="rclcpp_components" exec="component_container" name="box" namespace="/">
+    <composable_node pkg="composition_cases" plugin="composition_cases::Talker" name="talker"/>
+    <composable_node pkg="rmw_wasm_cpp_node_tests" plugin="rmw_wasm_cpp_node_tests::Listener"
+                     name="listener">
+      <remap from="component_chatter" to="chatter"/>
+    </composable_node>
+  </node_container>
+</launch>
+"""
+
+
+def _colcon_wasm(build, *args, timeout=120):
+    import subprocess
+    import sys
+    from pathlib import Path
+    command, *rest = args
+    return subprocess.run(
+        [str(Path(sys.executable).parent / 'colcon-wasm'), command, '--install-base',
+         str(build.install), *rest], capture_output=True, text=True, timeout=timeout)
+
+
+def test_stock_container_hosts_components_of_two_packages_in_node(build, tmp_path):
+    launch = tmp_path / 'box.launch.xml'
+    launch.write_text(CONTAINER_LAUNCH)
+    done = _colcon_wasm(build, 'launch', str(launch), '--duration', '5')
+    out = done.stdout + done.stderr
+    assert done.returncode == 0, out[-4000:]
+    assert "Loaded node '/talker' in container '/box'" in out, out[-4000:]
+    assert "Loaded node '/listener' in container '/box'" in out, out[-4000:]
+    # the stock container found the libraries in the ament index, as natively
+    assert 'Load Library: ' in out and 'libcase_components.a' in out
+    assert "Publishing: 'case talker says" in out
+    # the remapped listener of the other package hears the talker
+    assert 'component heard: case talker says' in out, out[-4000:]
+
+
+def test_stock_container_refuses_a_class_no_package_registers(build, tmp_path):
+    launch = tmp_path / 'bad.launch.xml'
+    launch.write_text(CONTAINER_LAUNCH.replace(
+        'composition_cases::Talker', 'composition_cases::Nobody'))
+    done = _colcon_wasm(build, 'launch', str(launch), '--duration', '4')
+    out = done.stdout + done.stderr
+    assert done.returncode != 0
+    assert "Failed to load node 'talker' of type 'composition_cases::Nobody' in container " \
+        "'/box'" in out, out[-4000:]
+    # with what the container does host
+    assert '(the container was linked with: ' in out
+    assert 'composition_cases/composition_cases::Talker' in out
+    assert "Loaded node '/listener' in container '/box'" in out
+
+
+def test_pluginlib_loads_plugins_of_a_run_dependency_in_node(build):
+    listed = _colcon_wasm(build, 'run', 'pluginlib_user', 'greet', 'list')
+    assert 'DECLARED pluginlib_greeters/Hello (pluginlib_greeters::Hello) in pluginlib_greeters' \
+        in listed.stdout, listed.stdout + listed.stderr
+    greeted = _colcon_wasm(build, 'run', 'pluginlib_user', 'greet', 'pluginlib_greeters/Shout',
+                           'you')
+    assert 'GREETING HELLO, YOU!' in greeted.stdout, greeted.stdout + greeted.stderr
+    unknown = _colcon_wasm(build, 'run', 'pluginlib_user', 'greet', 'nope', 'x')
+    assert 'PLUGIN FAILED According to the loaded plugin descriptions the class nope with base ' \
+        'class type pluginlib_base::Greeter does not exist' in unknown.stdout
+    assert unknown.returncode != 0
+
+
+def test_loading_a_library_that_is_not_linked_says_so(build):
+    done = _colcon_wasm(build, 'run', 'pluginlib_user', 'greet', '--library', '/x/libfoo.a')
+    assert "LOAD FAILED Could not load library library '/x/libfoo.a' is not linked into this " \
+        'WebAssembly executable' in done.stdout, done.stdout + done.stderr
+    assert 'linked libraries with plugins or components: libgreeters.a' in done.stdout
+    assert 'target_link_libraries' in done.stdout
+
+
+def test_uncaught_exception_shows_its_type_and_what(build):
+    done = _colcon_wasm(build, 'run', 'pluginlib_user', 'greet', '--uncaught', 'nope')
+    out = done.stdout + done.stderr
+    assert done.returncode != 0
+    assert "terminate called after throwing an instance of 'pluginlib::LibraryLoadException'" \
+        in out, out
+    assert 'what():  According to the loaded plugin descriptions the class nope' in out
+    assert 'process has died [exit code 1, uncaught exception of type ' \
+        "'pluginlib::LibraryLoadException': According to" in out, out
+
+
+def test_stock_container_and_pluginlib_in_chromium(build):
+    from served_page import explain_page
+    from served_page import ServedPage
+    with ServedPage(build.install) as page:
+        result = page.run([
+            {'start': 'greet', 'pkg': 'pluginlib_user', 'exe': 'greet',
+             'args': ['pluginlib_greeters/Hello', 'browser']},
+            {'wait': 'greet', 'text': 'GREETING Hello, browser'},
+            {'start': 'box', 'pkg': 'rclcpp_components', 'exe': 'component_container',
+             'args': ['--ros-args', '-r', '__node:=box']},
+            {'start': 'load', 'pkg': 'rmw_wasm_cpp_node_tests', 'exe': 'probe',
+             'args': ['load_component', '/box', 'composition_cases',
+                      'composition_cases::Talker']},
+            {'wait': 'load', 'text': 'LOADED /case_talker'},
+            {'wait': 'box', 'text': "Publishing: 'case talker says 2'"},
+        ])
+    assert result['ok'], explain_page(result)
+    assert any('Load Library: ' in line and 'libcase_components.a' in line
+               for line in result['logs']['box'])
+
+
+def test_stock_container_lists_and_unloads_in_node(build):
+    platform = Platform('node', build)
+    probe = platform.exe('rmw_wasm_cpp_node_tests', 'probe')
+    view = platform.view()
+
+    def step(name, *args):
+        return {'spawn': name, 'exe': probe, 'args': list(args), **view}
+    report = platform.run([
+        {'spawn': 'box', 'exe': platform.exe('rclcpp_components', 'component_container'),
+         'args': ['--ros-args', '-r', '__node:=box'], **view},
+        step('load1', 'load_component', '/box', 'composition_cases',
+             'composition_cases::Talker'),
+        {'exit': 'load1'},
+        step('load2', 'load_component', '/box', 'rmw_wasm_cpp_node_tests',
+             'rmw_wasm_cpp_node_tests::Listener'),
+        {'exit': 'load2'},
+        step('list1', 'list_components', '/box'),
+        {'exit': 'list1'},
+        step('unload', 'unload_component', '/box', '1'),
+        {'exit': 'unload'},
+        step('list2', 'list_components', '/box'),
+        {'exit': 'list2'},
+    ])
+    assert report['ok'], explain(report)
+    assert 'LOADED /case_talker id 1' in ' '.join(lines(report, 'load1'))
+    assert 'LOADED /component_listener id 2' in ' '.join(lines(report, 'load2'))
+    first = ' '.join(lines(report, 'list1'))
+    assert 'LISTED /case_talker id 1' in first and 'LISTED /component_listener id 2' in first
+    assert 'UNLOADED 1' in ' '.join(lines(report, 'unload'))
+    second = ' '.join(lines(report, 'list2'))
+    assert 'LISTED 1 nodes' in second and 'case_talker' not in second

@@ -53,7 +53,8 @@ class ServeCommand(CliExtensionPoint):
             return 1
         if not _is_loopback(args.host):
             print('colcon-wasm serve: warning: listening on {}: other machines can open the '
-                  'page and run your nodes'.format(args.host), file=sys.stderr)
+                  'page, run your nodes and read the files of the install space'.format(
+                      args.host), file=sys.stderr)
         executables = install_space.executables()
         print('Serving {} executable(s) of {}'.format(len(executables), install_space.base))
         print('Runtime: {}'.format(runtime_origin))

@@ -52,12 +52,15 @@ def make_plan(values, install_base):
 
 
 def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, command,
-            out=None, err=None, stdin=False, load_timeout=DEFAULT_LOAD_TIMEOUT):
+            out=None, err=None, stdin=False, load_timeout=DEFAULT_LOAD_TIMEOUT,
+            bases=None):
     """
     Resolve a plan against the install space and run it in Node.js (or print it).
 
     With ``stdin`` the one process of the plan reads this process' standard input.
     ``load_timeout`` (seconds) bounds each wait of a composable node load.
+    ``bases``: the install bases the processes see (default: the install space's
+    base and underlays), highest priority first; see ``install_view``.
 
     :returns: the exit status (1 for bad input, else the Node host's)
     """
@@ -66,7 +69,7 @@ def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, com
     try:
         install_space = InstallSpace(install_base)
         description = host_plan(plan, install_space, duration=duration, echo=echo,
-                                stdin=stdin, load_timeout=load_timeout)
+                                stdin=stdin, load_timeout=load_timeout, bases=bases)
     except (LaunchError, InstallSpaceError) as e:
         print('{}: {}'.format(command, e), file=err)
         return 1

@@ -195,17 +195,23 @@ class InstallSpace:
                 "package '{}' in '{}' has no colcon-wasm manifest ('{}'): it was not built "
                 "with 'colcon build --wasm', or it installs no executables".format(
                     package_name, package.prefix, package.manifest_path))
-        names = sorted(n for p, n in found if p == package_name)
+        names = [n for p, n in found if p == package_name]
         raise InstallSpaceError(
             "package '{}' has no executable '{}' (it has: {})".format(
                 package_name, name, ', '.join(names) or 'none'))
 
-    def executables(self):
-        """Return every Executable, by package (what ``ros2 run`` would find)."""
-        found = self._effective_executables()
-        return [found[key] for key in sorted(found)]
+    def executables(self, skip=None):
+        """
+        Return every Executable, by package (what ``ros2 run`` would find).
 
-    def _effective_executables(self):
+        :param skip: a predicate on package names: packages for which it is
+          false are left out (e.g. those whose manifest cannot be read)
+        """
+        found = self._effective_executables(skip)
+        # by package; in a package, in the order of its manifest
+        return sorted(found.values(), key=lambda e: e.package_name)
+
+    def _effective_executables(self, keep=None):
         """
         Map ``(package, executable)`` to the Executable that runs.
 
@@ -219,6 +225,8 @@ class InstallSpace:
             packages = _scan_base(base)
             own, provided = [], []
             for package in packages.values():
+                if keep is not None and not keep(package.name):
+                    continue
                 for executable in package.executables():
                     (own if executable.package_name == package.name else provided).append(
                         executable)

@@ -21,6 +21,10 @@ import threading
 from colcon_wasm.launch.composable import LOAD_NODE_TYPE
 from colcon_wasm.launch.errors import LaunchError
 from colcon_wasm.launch.install_space import InstallSpaceError
+from colcon_wasm.launch.install_view import ament_prefixes
+from colcon_wasm.launch.install_view import program_environment
+from colcon_wasm.launch.install_view import view_bases
+from colcon_wasm.launch.install_view import view_mounts
 
 HOST_SCRIPT = Path('tools') / 'launch_host.mjs'
 DEFAULT_LOAD_TIMEOUT = 60.0
@@ -74,7 +78,7 @@ def _check_load_node_types(install_space, load):
 
 
 def host_plan(plan, install_space, *, duration=None, echo=(), stdin=False,
-              load_timeout=DEFAULT_LOAD_TIMEOUT):
+              load_timeout=DEFAULT_LOAD_TIMEOUT, bases=None):
     """
     Describe a plan for ``launch_host.mjs``: absolute paths, no lookups left.
 
@@ -82,11 +86,17 @@ def host_plan(plan, install_space, *, duration=None, echo=(), stdin=False,
     as with ``ros2 run``; launched processes get none, as with ``ros2 launch``.
     ``load_timeout`` bounds, in seconds, the wait for a container's load_node
     service and for each of its answers.
+    Every process sees ``bases`` (default: the install space's base and
+    underlays; highest priority first) read-only at their real paths, and ``AMENT_PREFIX_PATH``
+    naming their packages unless its environment sets it.
 
     :raises LaunchError: for an executable that is not in the install space,
       or composable nodes without the composition_interfaces types
     """
+    bases = view_bases(install_space) if bases is None else [Path(b) for b in bases]
+    prefixes = ament_prefixes(bases)
     processes = []
+    hosted = {}
     for process in plan.processes:
         try:
             executable = install_space.executable(process.package, process.executable)
@@ -97,13 +107,25 @@ def host_plan(plan, install_space, *, duration=None, echo=(), stdin=False,
         entry['js'] = str(executable.js)
         entry['pthread'] = executable.pthread
         entry['uses_bus'] = executable.uses_bus
+        entry['env'] = program_environment(entry['env'], prefixes)
         processes.append(entry)
+        # the components the link launcher linked into a container (its manifest)
+        hosted[entry['label']] = [
+            '{}/{}'.format(c['package'], c['class'])
+            for c in executable.entry.get('linked', {}).get('components', [])]
     if plan.loads:
         _check_load_node_types(install_space, plan.loads[0])
+    loads = []
+    for load in plan.loads:
+        entry = load.to_json()
+        entry['hosts'] = sorted(
+            {c for label in entry['containers'] for c in hosted.get(label, [])})
+        loads.append(entry)
     return {
         'processes': processes,
-        'loads': [load.to_json() for load in plan.loads],
+        'loads': loads,
         'load_timeout': load_timeout,
+        'mounts': view_mounts(bases),
         'duration': duration,
         'echo': list(echo),
         'stdin': bool(stdin) and len(processes) == 1,

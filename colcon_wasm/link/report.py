@@ -24,6 +24,17 @@ REPORT_SUFFIX = '.colcon_wasm_link.json'
 REPORT_SCHEMA = 2
 
 
+def launcher_digest():
+    """Hash the link launcher's own code: another launcher links differently."""
+    digest = hashlib.sha256()
+    folder = os.path.dirname(os.path.abspath(__file__))
+    for name in sorted(os.listdir(folder)):
+        if name.endswith('.py'):
+            with open(os.path.join(folder, name), 'rb') as handle:
+                digest.update(name.encode() + b'\0' + handle.read())
+    return digest.hexdigest()
+
+
 def file_stamps(paths):
     """Describe files by path, size and modification time."""
     stamps = []
@@ -73,7 +84,7 @@ def stale_reason(report, bases):
     :param bases: the install chain of the build (current base first)
     """
     inputs = report.get('inputs')
-    if not inputs:
+    if not inputs or inputs.get('launcher') != launcher_digest():
         return 'it was linked by another colcon-wasm'
     for path, size, mtime in inputs.get('archives', []):
         current = file_stamps([path])[0]

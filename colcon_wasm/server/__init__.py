@@ -50,9 +50,14 @@ def runtime_entry(runtime_dir):
 
 
 def make_server(install_space, *, host, port, launcher_dir, runtime_dir, runtime_origin,
-                page_modules_dir=None):
-    """Create (and bind) the server for an install space."""
+                page_modules_dir=None, bases=None):
+    """
+    Create (and bind) the server for an install space.
+
+    :param bases: the install bases the page's programs see read-only, highest
+      priority first (default: the install space's base and underlays)
+    """
     site = Site(install_space, launcher_dir=launcher_dir, runtime_dir=runtime_dir,
                 runtime_origin=runtime_origin, runtime_entry=runtime_entry(runtime_dir),
-                page_modules_dir=page_modules_dir)
+                page_modules_dir=page_modules_dir, bases=bases)
     return LauncherServer(site, host, port)

@@ -155,19 +155,20 @@ class CompressionCache:
             event.set()
 
 
-def choose_body(path, accept_encoding, cache):
+def choose_body(path, accept_encoding, cache, precompressed=True):
     """
     Pick the representation of a file for a request.
 
     Precompressed siblings (``file.br``, ``file.gz``, not older than the file)
-    win; otherwise compressible files of at least 1 KiB are gzipped on the fly.
+    win unless ``precompressed`` is false; otherwise compressible files of at
+    least 1 KiB are gzipped on the fly.
 
     :returns: ``(body_path_or_None, body_bytes_or_None, encoding_or_None, stat)``
       (exactly one of path and bytes is set)
     """
     stat = os.stat(path)
     encodings = accepted_encodings(accept_encoding)
-    for encoding, suffix in (('br', '.br'), ('gzip', '.gz')):
+    for encoding, suffix in (('br', '.br'), ('gzip', '.gz')) if precompressed else ():
         if encoding not in encodings:
             continue
         try:

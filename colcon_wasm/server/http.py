@@ -87,7 +87,8 @@ class LauncherRequestHandler(BaseHTTPRequestHandler):
         try:
             url = urlsplit(self.path)
             segments = split_url_path(url.path)
-            content = site.route(segments, parse_qs(url.query))
+            content = site.route(segments, parse_qs(url.query),
+                                 directory=url.path.endswith('/'))
         except Refused as e:
             self._error(e.status, e.reason)
             return
@@ -103,7 +104,8 @@ class LauncherRequestHandler(BaseHTTPRequestHandler):
             return
         try:
             body_path, body, encoding, stat = choose_body(
-                content.path, self.headers.get('Accept-Encoding'), self.server.compression)
+                content.path, self.headers.get('Accept-Encoding'), self.server.compression,
+                precompressed=content.precompressed)
         except OSError as e:
             self._error(HTTPStatus.NOT_FOUND, 'cannot read: {}'.format(e.strerror))
             return

@@ -49,6 +49,7 @@ export class Session {
    */
   async start() {
     const { Runtime } = await import(this.workspace.runtime);
+    this.Runtime = Runtime;
     const registry = this.loadTypes();
     this.runtime = await Runtime.create({});
     this.ready = (async () => {
@@ -101,11 +102,20 @@ export class Session {
     };
     this.processes.set(id, proc);
     this.addLog(proc, { severity: 'SYSTEM', text: `starting ${pkg}/${exe} ${args.join(' ')}`.trim() });
+    const view = this.installView();
+    if (view.mounts.length && !(this.Runtime.features && this.Runtime.features.mounts)) {
+      this.addLog(proc, {
+        severity: 'WARN',
+        text: `the wasm_js runtime (${this.workspace.runtime}) predates read-only views: ${exe} does not see `
+          + 'its install space; rebuild it with colcon build --wasm --packages-select wasm_js',
+      });
+    }
     this.emit('processes');
     this.runtime.spawn({
       url: new URL(info.url, location.href).href,
       args: proc.args,
       name: proc.label,
+      ...view,
       onLog: ({ stream, text }) => this.addLog(proc, { stream, severity: severityOf(stream, text), text }),
       onExit: (exit) => this.exited(proc, exit),
       stdin: true, // an open standard input, typed into from the log dock
@@ -118,6 +128,18 @@ export class Session {
       this.exited(proc, { code: null, crashed: true, reason: error && error.message ? error.message : String(error), stack: error && error.stack });
     });
     return proc;
+  }
+
+  /**
+   * What every program sees of the install spaces (colcon_wasm/launch/install_view.py):
+   * read-only views served by `colcon-wasm serve` under /fs/, and AMENT_PREFIX_PATH.
+   * @returns {{mounts: Array<{path: string, url: string}>, env: Object<string, string>}}
+   */
+  installView() {
+    const mounts = (this.workspace.mounts || []).map((m) => ({ path: m.path, url: new URL(m.url, location.href).href }));
+    const env = {};
+    for (const [name, value] of Object.entries(this.workspace.environment || {})) if (value) env[name] = value;
+    return { mounts, env };
   }
 
   exited(proc, exit) {

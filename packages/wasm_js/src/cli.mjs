@@ -13,18 +13,21 @@
  *   --max-message-bytes N  bus message limit (default 64 MiB)
  *   --max-bytes N          bus size limit (default 1 GiB)
  *   --quiet-prefix         do not prefix log lines with "[name] "
+ *   --mount DIR            every executable sees DIR read-only at its real path (repeatable;
+ *                          see view_fs.mjs); set AMENT_PREFIX_PATH with --env yourself
  * Per executable (before its path): --name N, --env K=V (repeatable), --delay MS.
  * Executables are separated by `---`.
  *
  * @module cli
  */
 
+import path from 'node:path';
 import process from 'node:process';
 
 import { Runtime } from './runtime.mjs';
 
 const USAGE = 'usage: node cli.mjs [--timeout S] [--until NAME] [--max-message-bytes N] [--max-bytes N] ' +
-  '[--quiet-prefix] [--name N] [--env K=V]... [--delay MS] exe.js [args...] [--- [--name N] exe2.js [args...]]...';
+  '[--quiet-prefix] [--mount DIR]... [--name N] [--env K=V]... [--delay MS] exe.js [args...] [--- [--name N] exe2.js [args...]]...';
 
 class UsageError extends Error {}
 
@@ -33,7 +36,7 @@ class UsageError extends Error {}
  * @param {string[]} argv arguments after the script
  */
 export function parseArgs(argv) {
-  const opts = { timeout: 0, until: null, maxMessageBytes: undefined, maxBytes: undefined, prefix: true };
+  const opts = { timeout: 0, until: null, maxMessageBytes: undefined, maxBytes: undefined, prefix: true, mounts: [] };
   const segments = [];
   let i = 0;
   const intArg = (name) => {
@@ -48,6 +51,10 @@ export function parseArgs(argv) {
     else if (a === '--max-message-bytes') opts.maxMessageBytes = intArg(a);
     else if (a === '--max-bytes') opts.maxBytes = intArg(a);
     else if (a === '--quiet-prefix') opts.prefix = false;
+    else if (a === '--mount') {
+      if (!argv[i + 1]) throw new UsageError('--mount needs a directory');
+      opts.mounts.push({ path: path.resolve(argv[++i]) });
+    }
     else if (a === '-h' || a === '--help') throw new UsageError('');
     else break;
   }
@@ -122,6 +129,7 @@ export async function main(argv) {
       args: seg.args,
       env: seg.env,
       name: seg.name,
+      mounts: opts.mounts,
       onLog: ({ stream, text }) => {
         const line = opts.prefix ? `[${name}] ${text}\n` : `${text}\n`;
         (stream === 'stderr' ? process.stderr : process.stdout).write(line);

@@ -10,9 +10,11 @@
  */
 
 import { BusClient } from './bus_client.mjs';
-import { FromHost } from './protocol.mjs';
+import { FromHost, UNCAUGHT_EXCEPTION } from './protocol.mjs';
 import { PthreadPool } from './pthread_pool.mjs';
 import { StdinPipe } from './stdin_pipe.mjs';
+import { mountViews } from './view_fs.mjs';
+import { httpViewSource } from './view_source_http.mjs';
 
 /**
  * The platform half of a host.
@@ -25,6 +27,8 @@ import { StdinPipe } from './stdin_pipe.mjs';
  * @property {function(object): void} post post a message to the Runtime
  * @property {function(number): void} close end this worker
  * @property {function(string): Promise<WebAssembly.Module>} compile compile a .wasm URL
+ * @property {function(): import('./view_fs.mjs').ViewSource} [fileViewSource] the host's own
+ *   files, for views without a URL (Node.js)
  */
 
 /** This host's pre-started pthread workers (a warm host's), or null. */
@@ -182,17 +186,20 @@ function receiveOutsidePromise(fn) {
 
 /**
  * Describe an uncaught C++ exception: Emscripten throws the thrown object's
- * address (a number). wasm_cpp's `wasm_cpp_exception_text` (linked into every
- * executable that uses the bus) gives its type and what(), as a native
- * std::terminate prints them. Other values (JS errors, traps) give null.
+ * address (a number). `colcon_wasm_exception_text`, which colcon-wasm's link
+ * launcher links into every C++ executable (colcon_wasm/link/launcher.py),
+ * gives its type and what(), as a native std::terminate prints them. Other
+ * values (JS errors, traps) give null.
  * @param {*} value what reached Emscripten's quit()
  * @returns {{type: string, what: string|null}|null}
  */
 export function describeUncaughtException(value) {
   const g = globalThis;
   if (typeof value !== 'number' || typeof g.ExceptionInfo !== 'function') return null;
-  const text = typeof g._wasm_cpp_exception_text === 'function' ? g._wasm_cpp_exception_text : null;
-  if (!text || typeof g.UTF8ToString !== 'function') return { type: '(unknown: not linked with wasm_cpp)', what: null };
+  const text = typeof g._colcon_wasm_exception_text === 'function' ? g._colcon_wasm_exception_text : null;
+  if (!text || typeof g.UTF8ToString !== 'function') {
+    return { type: '(type unknown: the executable was not linked by colcon-wasm\'s link launcher)', what: null };
+  }
   try {
     const type = new g.ExceptionInfo(value).get_type();
     const pointer = text(value, type);
@@ -285,6 +292,28 @@ function writeFiles(files, url) {
 }
 
 /**
+ * Mount the START message's read-only views (see view_fs.mjs): served ones
+ * over HTTP, others from the host's own files. Mounting reads nothing.
+ * @param {Array<{path: string, url?: string}>|undefined} mounts
+ * @param {HostPlatform} platform
+ * @param {string} url the executable, for messages
+ * @param {function(string): void} warn
+ */
+function mountReadOnlyViews(mounts, platform, url, warn) {
+  if (!mounts || !mounts.length) return;
+  const FS = globalThis.FS;
+  // Linked without a file system (-sFILESYSTEM=0, or no file calls at all): it reads no files.
+  if (!FS || typeof FS.mount !== 'function' || typeof FS.createNode !== 'function') return;
+  const views = mounts.map(({ path, url: served }) => {
+    if (served) return { path, source: httpViewSource(served, path) };
+    if (platform.fileViewSource) return { path, source: platform.fileViewSource() };
+    throw new Error(`${url}: the view of '${path}' needs a url here: a browser worker reads views over HTTP `
+      + '(colcon-wasm serve serves install spaces under /fs/)');
+  });
+  mountViews(FS, views, warn);
+}
+
+/**
  * Start the executable described by a START message.
  * @param {object} msg the START message (see protocol.mjs)
  * @param {HostPlatform} platform
@@ -334,6 +363,8 @@ export async function startProcess(msg, platform) {
         if (typeof globalThis.ENV === 'object' && globalThis.ENV) Object.assign(globalThis.ENV, env);
         if (msg.stdin) connectStdin(new StdinPipe(msg.stdin), client);
         writeFiles(msg.files, msg.url);
+        mountReadOnlyViews(msg.mounts, platform, msg.url,
+          (text) => post({ type: FromHost.LOG, stream: 'stderr', text }));
       }],
       onExit: (code) => {
         exit(code, code !== 0, code !== 0 ? `exited with code ${code}` : '');
@@ -348,7 +379,9 @@ export async function startProcess(msg, platform) {
           // what a native process prints when std::terminate ends it
           post({ type: FromHost.LOG, stream: 'stderr', text: `terminate called after throwing an instance of '${uncaught.type}'` });
           if (uncaught.what !== null) post({ type: FromHost.LOG, stream: 'stderr', text: `  what():  ${uncaught.what}` });
-          exit(1, true, `uncaught exception of type '${uncaught.type}'${uncaught.what !== null ? `: ${uncaught.what}` : ''}`);
+          const reason = `${UNCAUGHT_EXCEPTION}'${uncaught.type}'${uncaught.what !== null ? `: ${uncaught.what}` : ''}`;
+          exit(1, true, reason);
+          throw new Error(reason);
         }
         throw toThrow;
       },

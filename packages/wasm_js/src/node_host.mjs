@@ -16,6 +16,7 @@ import { fileURLToPath } from 'node:url';
 import { Worker, parentPort } from 'node:worker_threads';
 
 import { prestartPthreadWorkers, startProcess } from './host_common.mjs';
+import { fileViewSource } from './view_source_node.mjs';
 
 /** A pre-started pthread worker (see pthread_pool.mjs). */
 function pthreadStub() {
@@ -66,6 +67,7 @@ const onMessage = (msg) => {
       setImmediate(() => process.exit(code || 0));
     },
     compile: async (url) => WebAssembly.compile(await fs.promises.readFile(fileURLToPath(url))),
+    fileViewSource,
   });
 };
 parentPort.on('message', onMessage);

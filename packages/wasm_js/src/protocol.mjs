@@ -16,8 +16,9 @@ export const ToHost = Object.freeze({
   PRELOAD: 'preload',
   /**
    * {type, bus, pid, url, wasmUrl, glueFile, args, env, name, wasmModule, stdin (SharedArrayBuffer
-   * of a StdinPipe, or null), files, scripts (absolute URL -> text: the glue and pthread worker
-   * script, prefetched in browsers; may be empty), busModuleUrl, hostModuleUrl}
+   * of a StdinPipe, or null), files, mounts ([{path, url?}]: read-only views, see view_fs.mjs),
+   * scripts (absolute URL -> text: the glue and pthread worker script, prefetched in browsers;
+   * may be empty), busModuleUrl, hostModuleUrl}
    */
   START: 'start',
 });
@@ -59,3 +60,9 @@ export const FromTools = Object.freeze({
   /** {type, subscription, messages: [{data: Uint8Array, info}]} */
   BATCH: 'batch',
 });
+
+/**
+ * How a host starts the crash reason of an uncaught C++ exception (the
+ * worker's error carries it when the EXIT message has not arrived first).
+ */
+export const UNCAUGHT_EXCEPTION = 'uncaught exception of type ';

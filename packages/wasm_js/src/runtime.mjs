@@ -12,7 +12,8 @@
 import { Bus, BusError, Code, waitAsyncAlive } from './bus.mjs';
 import { H, P, PROC_KIND_NODE, PROC_KIND_RUNTIME, PROC_KIND_TOOLS } from './layout.mjs';
 import { HostWorker, compileWasm, fetchScript, isNode, resolveUrl, siblingUrl } from './platform.mjs';
-import { FromHost, ToHost } from './protocol.mjs';
+import { FromHost, ToHost, UNCAUGHT_EXCEPTION } from './protocol.mjs';
+import { checkedFiles, checkedMounts } from './spawn_options.mjs';
 import { DEFAULT_STDIN_CAPACITY, StdinPipe } from './stdin_pipe.mjs';
 import { Tools } from './tools.mjs';
 
@@ -61,28 +62,6 @@ export function severityOf(stream, text) {
   const m = SEVERITY_RE.exec(text);
   if (m) return m[1];
   return stream === 'stderr' ? 'ERROR' : 'INFO';
-}
-
-/**
- * Check the `files` option of spawn(): absolute paths to text or bytes.
- * @param {Object<string, string|Uint8Array>|undefined} files
- * @param {string} name the executable, for messages
- * @returns {Object<string, string|Uint8Array>}
- */
-function checkedFiles(files, name) {
-  const out = {};
-  for (const [path, content] of Object.entries(files || {})) {
-    if (!path.startsWith('/') || path.split('/').includes('..')) {
-      throw new BusError(Code.INVALID_ARGUMENT,
-        `spawn '${name}': file path '${path}' must be absolute and must not contain '..'`);
-    }
-    if (typeof content !== 'string' && !(content instanceof Uint8Array)) {
-      throw new BusError(Code.INVALID_ARGUMENT,
-        `spawn '${name}': content of file '${path}' must be a string or a Uint8Array`);
-    }
-    out[path] = content;
-  }
-  return out;
 }
 
 function gidHex(words) {
@@ -284,6 +263,15 @@ function startHostWorker() {
 
 export class Runtime {
   /**
+   * What this runtime offers beyond the first release, for callers that may
+   * load an older one (an install space's): `mounts`, spawn()'s read-only views.
+   * @returns {{mounts: boolean}}
+   */
+  static get features() {
+    return { mounts: true };
+  }
+
+  /**
    * Create the bus and the runtime.
    * @param {object} [options]
    * @param {number} [options.maxMessageBytes=64 MiB] largest message
@@ -469,6 +457,10 @@ export class Runtime {
    *   without it standard input is empty
    * @param {Object<string, string|Uint8Array>} [spec.files] files written into the executable's
    *   file system before main() runs (absolute path → content), e.g. a `--params-file`
+   * @param {Array<{path: string, url?: string}>} [spec.mounts] read-only views of host
+   *   directories (install spaces), at the same absolute paths in the executable, mounted
+   *   before main() runs and read lazily: from the host's files under Node.js, from `url`
+   *   (served as view_source_http.mjs describes; needed in browsers) otherwise
    * @returns {Promise<NodeProcess>}
    */
   async spawn(spec) {
@@ -488,6 +480,7 @@ export class Runtime {
     for (const [k, v] of Object.entries(spec.env || {})) env[k] = String(v);
     const stdinPipe = makeStdinPipe(spec.stdin);
     const files = checkedFiles(spec.files, name);
+    const mounts = checkedMounts(spec.mounts, files, name);
     let wasmModule = spec.wasmModule || null;
     let scripts = {};
     if (spec.shareModule !== false) {
@@ -516,13 +509,16 @@ export class Runtime {
     worker.on('message', (m) => proc._onMessage(m));
     worker.on('error', (e) => {
       const where = e.filename ? ` (${e.filename}:${e.lineno})` : '';
-      proc._finish({ code: 1, crashed: true, reason: `uncaught error: ${e.message}${where}` });
+      // an uncaught C++ exception arrives described by the host (host_common.mjs)
+      const reason = e.message && e.message.startsWith(UNCAUGHT_EXCEPTION) ? e.message
+        : `uncaught error: ${e.message}${where}`;
+      proc._finish({ code: 1, crashed: true, reason });
     });
     worker.on('exit', ({ code }) => {
       proc._finish({ code, crashed: code !== 0, reason: code !== 0 ? `worker exited with code ${code}` : '' });
     });
     worker.postMessage({
-      type: ToHost.START, bus: this.bus.handle, pid, url, wasmUrl, glueFile, args, env, name, wasmModule, stdin: stdinPipe && stdinPipe.sab, files, scripts,
+      type: ToHost.START, bus: this.bus.handle, pid, url, wasmUrl, glueFile, args, env, name, wasmModule, stdin: stdinPipe && stdinPipe.sab, files, mounts, scripts,
       busModuleUrl: siblingUrl('bus_client.mjs'), hostModuleUrl: siblingUrl('host_common.mjs'),
     });
     return proc;

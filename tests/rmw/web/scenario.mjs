@@ -85,6 +85,7 @@ export async function runScenario(Runtime, scenario) {
             env: step.env || {},
             stdin: step.stdin,
             files: step.files,
+            mounts: step.mounts,
             name: step.spawn,
             onLog: ({ stream, severity, text }) => {
               report.logs.push({

@@ -114,8 +114,11 @@ export class ComposableLoader {
   }
 
   _fail(group, request, why, fullName) {
+    // WebAssembly has no dlopen: a container hosts what was linked into it
+    const hosts = group.hosts && group.hosts.length
+      ? ` (the container was linked with: ${group.hosts.join(', ')})` : '';
     this._err(`[ERROR] [${LOGGER}]: Failed to load node '${fullName || request.node_name}' of type `
-      + `'${request.plugin_name}' in container '${group.target}': ${why}`);
+      + `'${request.plugin_name}' in container '${group.target}': ${why}${hosts}`);
   }
 
   _waitForService(group) {

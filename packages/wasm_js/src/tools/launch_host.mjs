@@ -8,7 +8,8 @@
  *
  * The plan (colcon_wasm/launch/runner.py) lists processes with absolute .js
  * paths, arguments and environment, an optional duration, topics to echo,
- * the types.json files and the URL of the Runtime module to use (the install
+ * the types.json files, the read-only views every process gets of the
+ * install bases (`mounts`, see view_fs.mjs) and the URL of the Runtime module to use (the install
  * space's, which matches the executables). All processes share one bus (one Runtime). Output is
  * prefixed `[label]` and process events are reported as `ros2 launch` does.
  * Composable nodes (`plan.loads`) are loaded into their containers once the
@@ -74,7 +75,13 @@ function echoTopic(runtime, tools, registry, topic, stopping) {
 
 async function main() {
   const plan = JSON.parse(process.argv[2]);
-  const { Runtime } = await import(plan.runtime || new URL('../runtime.mjs', import.meta.url).href);
+  const runtimeUrl = plan.runtime || new URL('../runtime.mjs', import.meta.url).href;
+  const { Runtime } = await import(runtimeUrl);
+  if (plan.mounts && plan.mounts.length && !(Runtime.features && Runtime.features.mounts)) {
+    err(`[WARNING] [launch]: the wasm_js runtime ${runtimeUrl} predates read-only views: the processes `
+      + 'do not see their install space (AMENT_PREFIX_PATH is set all the same); rebuild it with '
+      + "'colcon build --wasm --packages-select wasm_js'");
+  }
   const runtime = await Runtime.create({});
   const registry = loadRegistry(plan.types || []);
   const handles = new Map();
@@ -130,6 +137,7 @@ async function main() {
         },
         onExit,
         stdin: plan.stdin ? true : undefined,
+        mounts: plan.mounts || [],
       });
       handles.set(proc.label, handle);
       if (plan.stdin) forwardStdin(handle);

@@ -31,6 +31,8 @@
 #include <vector>
 
 #include "composition_interfaces/srv/load_node.hpp"
+#include "composition_interfaces/srv/list_nodes.hpp"
+#include "composition_interfaces/srv/unload_node.hpp"
 #include "example_interfaces/srv/add_two_ints.hpp"
 #include "rclcpp/rclcpp.hpp"
 #include "rosgraph_msgs/msg/clock.hpp"
@@ -356,6 +358,67 @@ int load_component(const std::vector<std::string> & args)
   return 0;
 }
 
+// Lists the nodes of a component container: "LISTED <name> id <id>" each.
+int list_components(const std::vector<std::string> & args)
+{
+  if (args.empty()) {
+    std::fprintf(stderr, "usage: probe list_components <container>\n");
+    return 2;
+  }
+  using ListNodes = composition_interfaces::srv::ListNodes;
+  auto node = std::make_shared<rclcpp::Node>("component_lister");
+  auto client = node->create_client<ListNodes>(args[0] + "/_container/list_nodes");
+  if (!client->wait_for_service(10s)) {
+    RCLCPP_ERROR(node->get_logger(), "NO CONTAINER %s", args[0].c_str());
+    return 1;
+  }
+  auto future = client->async_send_request(std::make_shared<ListNodes::Request>());
+  if (rclcpp::spin_until_future_complete(node, future, 10s) !=
+    rclcpp::FutureReturnCode::SUCCESS)
+  {
+    RCLCPP_ERROR(node->get_logger(), "LIST TIMED OUT");
+    return 1;
+  }
+  auto response = future.get();
+  for (size_t i = 0; i < response->full_node_names.size(); ++i) {
+    RCLCPP_INFO(
+      node->get_logger(), "LISTED %s id %llu", response->full_node_names[i].c_str(),
+      static_cast<unsigned long long>(response->unique_ids[i]));
+  }
+  RCLCPP_INFO(node->get_logger(), "LISTED %zu nodes", response->full_node_names.size());
+  return 0;
+}
+
+// Asks a component container to unload the node of an id.
+int unload_component(const std::vector<std::string> & args)
+{
+  if (args.size() < 2) {
+    std::fprintf(stderr, "usage: probe unload_component <container> <id>\n");
+    return 2;
+  }
+  using UnloadNode = composition_interfaces::srv::UnloadNode;
+  auto node = std::make_shared<rclcpp::Node>("component_unloader");
+  auto client = node->create_client<UnloadNode>(args[0] + "/_container/unload_node");
+  if (!client->wait_for_service(10s)) {
+    RCLCPP_ERROR(node->get_logger(), "NO CONTAINER %s", args[0].c_str());
+    return 1;
+  }
+  auto request = std::make_shared<UnloadNode::Request>();
+  request->unique_id = std::stoull(args[1]);
+  auto future = client->async_send_request(request);
+  if (rclcpp::spin_until_future_complete(node, future, 10s) !=
+    rclcpp::FutureReturnCode::SUCCESS)
+  {
+    RCLCPP_ERROR(node->get_logger(), "UNLOAD TIMED OUT");
+    return 1;
+  }
+  auto response = future.get();
+  RCLCPP_INFO(
+    node->get_logger(), "%s %s", response->success ? "UNLOADED" : "UNLOAD FAILED",
+    response->success ? args[1].c_str() : response->error_message.c_str());
+  return 0;
+}
+
 
 // ---------------------------------------------------------------- bench/rclcpp
 
@@ -543,7 +606,8 @@ int main(int argc, char ** argv)
     {"wrong_type", wrong_type}, {"no_server", no_server}, {"invalid_topic", invalid_topic},
     {"oversize", oversize}, {"clock", clock_publisher}, {"sim_time", sim_time},
     {"hold_server", hold_server}, {"add_server", add_server}, {"caller", caller},
-    {"load_component", load_component},
+    {"load_component", load_component}, {"list_components", list_components},
+    {"unload_component", unload_component},
     {"bench_pong_string", [](const std::vector<std::string> &) {
         return bench_pong<std_msgs::msg::String>();
       }},

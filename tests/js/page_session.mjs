@@ -1,0 +1,88 @@
+// Copyright 2026 colcon-wasm contributors
+// Licensed under the Apache License, Version 2.0
+
+// Drives the launcher page served by `colcon-wasm serve` the way a user does:
+// starts executables with arguments through the page's session, waits for
+// log lines, stops them. Debian's Chromium through playwright-core (never a
+// downloaded browser). Prints one JSON line:
+// {ok, error, logs: {name: [text]}, states: {name: state}, pageErrors}.
+//
+//   node page_session.mjs '<json: {url, chromium, steps, timeoutMs?}>'
+//
+// steps: {start: NAME, pkg, exe, args?} | {wait: NAME, text | regex, count?}
+//        | {sleep: MS} | {stop: NAME}
+
+import { chromium } from 'playwright-core';
+
+const options = JSON.parse(process.argv[2]);
+const timeoutMs = options.timeoutMs || 60000;
+const browser = await chromium.launch({
+  executablePath: options.chromium,
+  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+    '--disable-background-networking', '--disable-component-update', '--disable-sync'],
+});
+const pageErrors = [];
+const ids = {};
+let error = null;
+let page = null;
+
+function pageLogs() {
+  return page.evaluate((names) => {
+    const session = window.colconWasm.session;
+    const logs = {};
+    const states = {};
+    for (const [name, id] of Object.entries(names)) {
+      const proc = session.processes.get(id);
+      logs[name] = proc ? proc.log.map((e) => e.text) : [];
+      states[name] = proc ? proc.state : 'unknown';
+    }
+    return { logs, states };
+  }, ids);
+}
+
+try {
+  page = await browser.newPage();
+  page.on('pageerror', (e) => pageErrors.push(String(e && e.stack ? e.stack : e)));
+  await page.goto(options.url);
+  await page.waitForFunction(() => window.colconWasm && window.colconWasm.session
+    && window.colconWasm.session.runtime, null, { timeout: timeoutMs });
+  for (const step of options.steps) {
+    if (step.start) {
+      ids[step.start] = await page.evaluate(({ pkg, exe, args }) => window.colconWasm.session
+        .startProcess(pkg, exe, args).id, { pkg: step.pkg, exe: step.exe, args: step.args || [] });
+    } else if (step.wait) {
+      const deadline = Date.now() + (step.timeoutMs || timeoutMs);
+      const pattern = step.regex ? new RegExp(step.regex) : null;
+      for (;;) {
+        const { logs, states } = await pageLogs();
+        const lines = logs[step.wait] || [];
+        const hits = lines.filter((t) => (pattern ? pattern.test(t) : t.includes(step.text))).length;
+        if (hits >= (step.count || 1)) break;
+        if (states[step.wait] !== 'starting' && states[step.wait] !== 'running') {
+          throw new Error(`${step.wait} ended (${states[step.wait]}) before printing `
+            + `${JSON.stringify(step.text || step.regex)}`);
+        }
+        if (Date.now() > deadline) {
+          throw new Error(`timed out waiting for ${step.wait} to print ${JSON.stringify(step.text || step.regex)}`);
+        }
+        await new Promise((resolve) => setTimeout(resolve, 100));
+      }
+    } else if (step.sleep) {
+      await new Promise((resolve) => setTimeout(resolve, step.sleep));
+    } else if (step.stop) {
+      await page.evaluate((id) => window.colconWasm.session.stopProcess(id), ids[step.stop]);
+    } else {
+      throw new Error(`unknown step ${JSON.stringify(step)}`);
+    }
+  }
+} catch (e) {
+  error = String(e && e.message ? e.message : e);
+}
+let result = { logs: {}, states: {} };
+try {
+  if (page) result = await pageLogs();
+} catch (e) {
+  error = error || String(e);
+}
+await browser.close();
+process.stdout.write(`${JSON.stringify({ ok: !error, error, ...result, pageErrors })}\n`);
