@@ -10,6 +10,9 @@ import sys
 
 from colcon_core.environment_variable import EnvironmentVariable
 from colcon_wasm import resources
+from colcon_wasm.testing.options import add_wasm_test_arguments
+from colcon_wasm.testing.options import cmake_arguments_for_tests
+from colcon_wasm.testing.options import TestSettings
 
 OPT_LEVELS = ('1', '2', '3', 's', 'z')
 
@@ -72,6 +75,7 @@ def add_wasm_arguments(parser):
         default=_default_pool_size(),
         help='Workers started with each executable (default: '
              f'${PTHREAD_POOL_SIZE_ENV} or 4)')
+    add_wasm_test_arguments(parser)
 
 
 def _pool_size(value):
@@ -108,6 +112,7 @@ class WasmSettings:
         pool = getattr(args, 'wasm_pthread_pool_size', None)
         self.pthread_pool_size = _default_pool_size() if pool is None \
             else int(pool)
+        self.testing = TestSettings(args)
 
     def describe(self, cmake_args):
         """Get the flags entry of the manifest."""
@@ -115,6 +120,7 @@ class WasmSettings:
             'pthread': self.pthread, 'debug': self.debug,
             'opt': self.opt_level, 'link_opt': self.link_opt_level,
             'pthread_pool_size': self.pthread_pool_size if self.pthread else 0,
+            **self.testing.describe(),
             'cmake_args': list(cmake_args)}
 
 
@@ -161,6 +167,8 @@ def cmake_arguments(*, emscripten, settings, install_base, rule,
         f'-DCOLCON_WASM_DEBUG={on_off[settings.debug]}',
         f'-DCOLCON_WASM_OPT_LEVEL={settings.opt_level}',
         f'-DCOLCON_WASM_LINK_OPT_LEVEL={settings.link_opt_level}',
+        # before the initial cache, which reads them (tests, fault injection)
+        *cmake_arguments_for_tests(settings.testing, project_name, rule),
         '-C', str(resources.file('toolchains', 'wasm-ros-cache.cmake')),
         '-DCMAKE_TOOLCHAIN_FILE=' + str(
             resources.file('toolchains', 'wasm-ros.cmake')),

@@ -197,15 +197,34 @@ def get_underlays(args):
     underlays = getattr(args, _ARGS_ATTRIBUTE, None)
     if underlays is None:
         install_base = getattr(args, 'install_base', None) or 'install_wasm'
+        option_paths = getattr(args, 'wasm_underlay', None) or []
+        pthread = not getattr(args, 'wasm_no_pthread', False)
         try:
+            if getattr(args, 'verb_name', None) == 'test':
+                option_paths, pthread = _as_built(install_base, option_paths, pthread)
             underlays = find_underlays(
-                option_paths=getattr(args, 'wasm_underlay', None) or [],
+                option_paths=option_paths,
                 environ=os.environ, install_base=install_base,
-                pthread=not getattr(args, 'wasm_no_pthread', False))
+                pthread=pthread)
         except ColconWasmError as e:
             raise SystemExit(exit_message(e)) from e
         setattr(args, _ARGS_ATTRIBUTE, underlays)
     return underlays
+
+
+def _as_built(install_base, option_paths, pthread):
+    """
+    Get the underlays and threads setting `colcon test` uses: the build's.
+
+    The tests run on what the install base was built on (its marker), unless
+    `--wasm-underlay` or `COLCON_WASM_PREFIX_PATH` name underlays.
+    """
+    marker = read_marker(install_base)
+    if marker is None:
+        return option_paths, pthread
+    if not option_paths and not os.environ.get(PREFIX_PATH_VARIABLE):
+        option_paths = list(marker.get('underlays') or [])
+    return option_paths, bool(marker.get('pthread', pthread))
 
 
 def split_native_prefixes(environ):

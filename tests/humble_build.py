@@ -49,7 +49,10 @@ _NOT_INPUTS = ('colcon_wasm/cli/', 'colcon_wasm/blasm.py',
                'colcon_wasm/doctor.py', 'colcon_wasm/launch/',
                'colcon_wasm/server/', 'templates/launcher/',
                'recipes/schema.md',
-               'recipes/humble.repos')
+               'recipes/humble.repos',
+               # colcon test --wasm: runs tests, builds nothing
+               'colcon_wasm/task/test.py', 'colcon_wasm/testing/results.py',
+               'colcon_wasm/testing/verb.py', 'colcon_wasm/argument_parser/test_result.py')
 
 
 def humble_snapshot():

@@ -13,11 +13,13 @@ def test_flake8():
     """Check style, docstrings, import order and quotes."""
     paths = [
         'colcon_wasm', 'tests/colcon_helpers.py', 'tests/humble_build.py',
-        'bench/build', 'scripts/humble_report.py',
+        'bench/build', 'scripts/humble_report.py', 'scripts/testing_report.py',
+        'tests/conftest.py', 'tests/wasm_test_build.py',
     ] + sorted(str(p.relative_to(REPO)) for p in REPO.glob('tests/test_*.py')
                if p.name.startswith(('test_colcon', 'test_recipe',
                                      'test_patch', 'test_glue', 'test_blasm',
-                                     'test_humble', 'test_ci')))
+                                     'test_humble', 'test_ci', 'test_conftest',
+                                     'test_testing')))
     paths = [p for p in paths if (REPO / p).exists()]
     completed = subprocess.run(
         [sys.executable, '-m', 'flake8', '--extend-ignore=D100,D103,D104',

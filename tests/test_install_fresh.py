@@ -232,6 +232,19 @@ def test_launch_and_run(demo, fresh):
     assert '[echo /chatter]' in completed.stdout, completed.stdout[-3000:]
 
 
+def test_colcon_test_and_test_result(demo, fresh):
+    # the README's test commands from the fresh venv: the demo is built without
+    # tests, which colcon test --wasm says (Humble's tests: tests/test_colcon_test.py)
+    completed = run(fresh, 'colcon', 'test', '--wasm', cwd=demo, timeout=600)
+    assert 'Summary:' in completed.stdout, completed.stdout[-3000:]
+    log = (demo / 'log' / 'latest_test' / 'logger_all.log').read_text()
+    assert "'demo_nodes' was built without its tests: build them with colcon build " \
+        '--wasm --wasm-tests demo_nodes' in log, log[-3000:]
+    shown = run(fresh, 'colcon', 'test-result', '--wasm', '--verbose', cwd=demo, check=False)
+    assert 'Summary: 0 tests' in shown.stdout, shown.stdout + shown.stderr
+    assert shown.returncode == 0
+
+
 def _free_port():
     with socket.socket() as s:
         s.bind(('127.0.0.1', 0))

@@ -4,7 +4,12 @@
 
 # static libraries only: WebAssembly has no dlopen here
 set(BUILD_SHARED_LIBS OFF CACHE BOOL "colcon-wasm: static libraries only")
-set(BUILD_TESTING OFF CACHE BOOL "colcon-wasm: tests do not run in the browser")
+# tests: with --wasm-tests (COLCON_WASM_TESTS, see toolchains/wasm-ros-tests.cmake)
+if(COLCON_WASM_TESTS)
+  set(BUILD_TESTING ON CACHE BOOL "colcon-wasm: --wasm-tests" FORCE)
+else()
+  set(BUILD_TESTING OFF CACHE BOOL "colcon-wasm: tests are built with --wasm-tests" FORCE)
+endif()
 
 if(COLCON_WASM_DEBUG)
   set(CMAKE_BUILD_TYPE Debug CACHE STRING "colcon-wasm: --wasm-debug")

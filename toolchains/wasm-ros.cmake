@@ -250,3 +250,8 @@ function(colcon_wasm_capture_link_closure library)
     "${_colcon_wasm_link_launcher} --capture ${_out} --package ${PROJECT_NAME} --build-dir ${CMAKE_BINARY_DIR} --install-prefix ${CMAKE_INSTALL_PREFIX} --")
   install(FILES "${_out}" DESTINATION share/${PROJECT_NAME}/colcon_wasm/closures)
 endfunction()
+
+# tests and fault injection (--wasm-tests, --wasm-fault-injection)
+if(COLCON_WASM_TESTS OR COLCON_WASM_FAULT_INJECTION)
+  include("${CMAKE_CURRENT_LIST_DIR}/wasm-ros-tests.cmake")
+endif()

@@ -31,19 +31,21 @@ if __package__ in (None, ''):
     from colcon_wasm.link import closure  # noqa: E402
     from colcon_wasm.link import report as link_report  # noqa: E402
     from colcon_wasm.link import symbols  # noqa: E402
+    from colcon_wasm.link import test_link  # noqa: E402
 else:
     from colcon_wasm.link import ament_index
     from colcon_wasm.link import archive
     from colcon_wasm.link import closure
     from colcon_wasm.link import report as link_report
     from colcon_wasm.link import symbols
+    from colcon_wasm.link import test_link
 
 """Outputs that make a link command an executable link."""
 EXECUTABLE_SUFFIXES = ('.js', '.mjs', '.html', '.wasm')
 
 USAGE = ('usage: launcher.py --cache DIR --nm LLVM_NM --cxxfilt LLVM_CXXFILT '
          '[--bases B1:B2...] [--capture FILE --package PKG --build-dir DIR '
-         '--install-prefix PREFIX] -- LINKER ARGS...')
+         '--install-prefix PREFIX] [--test-pre-js FILE] -- LINKER ARGS...')
 
 
 def say(text):
@@ -55,7 +57,7 @@ def parse_command_line(argv):
     """Split the launcher's options from the link command."""
     options = {'--cache': None, '--nm': 'llvm-nm', '--cxxfilt': 'llvm-cxxfilt',
                '--bases': '', '--capture': None, '--package': '',
-               '--build-dir': '', '--install-prefix': ''}
+               '--build-dir': '', '--install-prefix': '', '--test-pre-js': None}
     index = 0
     while index < len(argv) and argv[index] != '--':
         if argv[index] not in options or index + 1 >= len(argv):
@@ -449,8 +451,15 @@ def main(argv=None):
     link = LinkCommand(command)
     if options['--capture'] and link.is_executable:
         return capture(options, link)
+    tests = bool(options['--test-pre-js']) and link.is_executable and \
+        test_link.is_test_link(link)
+    if tests:
+        # a gtest/gmock executable of a --wasm-tests build: a Node.js test program
+        command = command + test_link.test_link_flags(link, options['--test-pre-js'])
     if not link.is_executable or not link.archives:
         # archives, objects, try_compile checks: nothing is loaded there
+        if tests:
+            return test_link.run_test_link(command, link.output)
         os.execvp(command[0], command)
     plan = LinkPlan(options, link).build()
     for warning in plan.warnings:
@@ -464,6 +473,8 @@ def main(argv=None):
         handle.write('\n')
     sys.stdout.flush()
     sys.stderr.flush()
+    if tests:
+        return test_link.run_test_link(final, link.output)
     os.execvp(final[0], final)
 
 

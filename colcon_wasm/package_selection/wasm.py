@@ -37,6 +37,9 @@ from colcon_wasm.system_deps import add_system_packages
 from colcon_wasm.system_deps import check_system_dependencies
 from colcon_wasm.system_deps import system_cmake_args
 from colcon_wasm.system_deps import SYSTEM_RULE_KEY
+from colcon_wasm.testing.options import recipe_overlays_for_tests
+from colcon_wasm.testing.verb import is_test_verb
+from colcon_wasm.testing.verb import prepare_test_verb
 from colcon_wasm.toolchain import find_emscripten
 from colcon_wasm.underlay import get_underlays
 from colcon_wasm.underlay import PREFIX_PATH_VARIABLE
@@ -81,7 +84,8 @@ def get_recipe(args):
     recipe = getattr(args, _RECIPE_ATTR, None)
     if recipe is None:
         try:
-            recipe = load_recipe(getattr(args, 'wasm_recipe', None) or [])
+            recipe = load_recipe(recipe_overlays_for_tests(args)
+                                 + list(getattr(args, 'wasm_recipe', None) or []))
         except ColconWasmError as e:
             raise SystemExit(exit_message(e)) from e
         setattr(args, _RECIPE_ATTR, recipe)
@@ -289,7 +293,9 @@ class WasmPackageSelection(PackageSelectionExtensionPoint):
         if not getattr(args, 'wasm', False):
             return
         get_recipe(args)
-        if _is_build_verb(args):
+        if is_test_verb(args):
+            prepare_test_verb(args)
+        elif _is_build_verb(args):
             emscripten = prepare_environment(args)
             setattr(args, '_colcon_wasm_emscripten', emscripten)
             prepare_underlays(args, emscripten)

@@ -14,6 +14,8 @@ import re
 
 from colcon_wasm.error import ColconWasmError
 from colcon_wasm.recipe import system
+from colcon_wasm.recipe.tests import check_tests_rule
+from colcon_wasm.recipe.tests import TestsRule
 from colcon_wasm.recipe.yaml_lines import LineDict
 from packaging.specifiers import InvalidSpecifier
 from packaging.specifiers import SpecifierSet
@@ -23,7 +25,7 @@ TOP_LEVEL_KEYS = (
 RECIPE_KEYS = ('name', 'version', 'ros-distro')
 PACKAGE_KEYS = (
     'cmake-args', 'env', 'patches', 'depends', 'drop-depends',
-    'project-include', 'note')
+    'project-include', 'note', 'tests')
 PATCH_KEYS = ('file', 'versions')
 
 _NAME_PATTERN = re.compile(r'^[A-Za-z0-9_.*?\[\]-]+$')
@@ -80,6 +82,7 @@ class PackageRule:
         self.drop_depends = []
         self.project_include = None
         self.note = None
+        self.tests = TestsRule()
 
     def merge(self, other):
         """Add an overlay's rule: lists are appended, mappings updated."""
@@ -93,6 +96,7 @@ class PackageRule:
             self.project_include = other.project_include
         if other.note is not None:
             self.note = other.note
+        self.tests.merge(other.tests)
 
 
 class Recipe:
@@ -424,6 +428,11 @@ def _check_package(path, packages, name, value):
     if 'note' in value:
         rule.note = _check_string(path, value, 'note', f'{dotted}.note',
                                   value['note'])
+    if 'tests' in value:
+        rule.tests = check_tests_rule(
+            path, value, f'{dotted}.tests', value['tests'], fail=_fail,
+            check_keys=_check_keys, check_string=_check_string,
+            check_mapping=_check_mapping)
     return rule
 
 

@@ -127,12 +127,13 @@ rmw_ret_t endpoints_info(
     allocator, "allocator argument is invalid", return RMW_RET_INVALID_ARGUMENT);
   RMW_CHECK_ARGUMENT_FOR_NULL(topic_name, RMW_RET_INVALID_ARGUMENT);
   RMW_CHECK_ARGUMENT_FOR_NULL(out, RMW_RET_INVALID_ARGUMENT);
-  rmw_ret_t ret = rmw_topic_endpoint_info_array_check_zero(out);
-  if (ret != RMW_RET_OK) {
-    return ret;
+  if (rmw_topic_endpoint_info_array_check_zero(out) != RMW_RET_OK) {
+    // rmw_get_*_info_by_topic: an array that is not zero initialized is an
+    // invalid argument (rmw's check says RMW_RET_ERROR; its message is kept)
+    return RMW_RET_INVALID_ARGUMENT;
   }
   std::vector<wasm_cpp::EndpointInfo> endpoints;
-  ret = rmw_wasm_cpp::to_rmw_ret(
+  rmw_ret_t ret = rmw_wasm_cpp::to_rmw_ret(
     wasm_cpp::graph::get_endpoints(context_of(node), topic_name, kind, &endpoints));
   if (ret != RMW_RET_OK) {
     return ret;

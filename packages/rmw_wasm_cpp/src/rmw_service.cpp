@@ -282,15 +282,17 @@ rmw_ret_t rmw_client_set_on_new_response_callback(
 rmw_ret_t rmw_service_server_is_available(
   const rmw_node_t * node, const rmw_client_t * client, bool * is_available)
 {
-  RMW_CHECK_ARGUMENT_FOR_NULL(node, RMW_RET_INVALID_ARGUMENT);
+  // rmw.h: RMW_RET_ERROR (not INVALID_ARGUMENT) for a null node, client or
+  // is_available, as test_rmw_implementation checks
+  RMW_CHECK_ARGUMENT_FOR_NULL(node, RMW_RET_ERROR);
   RMW_CHECK_TYPE_IDENTIFIERS_MATCH(
     node, node->implementation_identifier, kIdentifier,
     return RMW_RET_INCORRECT_RMW_IMPLEMENTATION);
-  RMW_CHECK_ARGUMENT_FOR_NULL(client, RMW_RET_INVALID_ARGUMENT);
+  RMW_CHECK_ARGUMENT_FOR_NULL(client, RMW_RET_ERROR);
   RMW_CHECK_TYPE_IDENTIFIERS_MATCH(
     client, client->implementation_identifier, kIdentifier,
     return RMW_RET_INCORRECT_RMW_IMPLEMENTATION);
-  RMW_CHECK_ARGUMENT_FOR_NULL(is_available, RMW_RET_INVALID_ARGUMENT);
+  RMW_CHECK_ARGUMENT_FOR_NULL(is_available, RMW_RET_ERROR);
   *is_available = static_cast<ClientData *>(client->data)->client().server_is_available();
   return RMW_RET_OK;
 }

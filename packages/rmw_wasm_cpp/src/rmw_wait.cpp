@@ -92,7 +92,8 @@ rmw_wait_set_t * rmw_create_wait_set(rmw_context_t * context, size_t max_conditi
 
 rmw_ret_t rmw_destroy_wait_set(rmw_wait_set_t * wait_set)
 {
-  RMW_CHECK_ARGUMENT_FOR_NULL(wait_set, RMW_RET_INVALID_ARGUMENT);
+  // rmw.h: RMW_RET_ERROR for a null wait set (test_rmw_implementation checks it)
+  RMW_CHECK_ARGUMENT_FOR_NULL(wait_set, RMW_RET_ERROR);
   RMW_CHECK_TYPE_IDENTIFIERS_MATCH(
     wait_set, wait_set->implementation_identifier, kIdentifier,
     return RMW_RET_INCORRECT_RMW_IMPLEMENTATION);

@@ -62,7 +62,10 @@ export const TakeMode = Object.freeze({ MESSAGE: 0, REQUEST: 1, RESPONSE: 2 });
 /** Words per wait item: kind, handle, aux, result. */
 export const WAIT_ITEM_WORDS = 4;
 
-const NAME_RE = /^\/(?:[A-Za-z_~{}][A-Za-z0-9_~{}]*(?:\/[A-Za-z_~{}][A-Za-z0-9_~{}]*)*)?$/;
+// A ROS name ('/chatter', '/ns/topic'), or a native one without the leading
+// slash ('chatter'): rmw_wasm_cpp passes those for avoid_ros_namespace_conventions,
+// as DDS middlewares use the name as given; the two never match each other.
+const NAME_RE = /^\/?[A-Za-z_~{}][A-Za-z0-9_~{}]*(?:\/[A-Za-z_~{}][A-Za-z0-9_~{}]*)*$/;
 const NODE_NAME_RE = /^[A-Za-z_][A-Za-z0-9_]*$/;
 const NAMESPACE_RE = /^\/(?:[A-Za-z_][A-Za-z0-9_]*(?:\/[A-Za-z_][A-Za-z0-9_]*)*)?$/;
 const TYPE_RE = /^[A-Za-z_][A-Za-z0-9_]*(?:\/[A-Za-z_][A-Za-z0-9_]*)*$/;
@@ -346,7 +349,7 @@ export class BusClient {
     if (typeof name !== 'string' || name.length > 1024 || !NAME_RE.test(name) || name === '/') {
       const noun = kind === KIND_SERVICE || kind === KIND_CLIENT ? 'service' : 'topic';
       throw new BusError(Code.INVALID_ARGUMENT,
-        `cannot create ${what}: invalid ${noun} name ${JSON.stringify(name)} (must be absolute like '/chatter', tokens of letters, digits and '_' not starting with a digit)`);
+        `cannot create ${what}: invalid ${noun} name ${JSON.stringify(name)} (must be like '/chatter', or 'chatter' for a native name: tokens of letters, digits and '_' not starting with a digit)`);
     }
     if (typeof spec.type !== 'string' || !TYPE_RE.test(spec.type) || spec.type.length > 1024) {
       throw new BusError(Code.INVALID_ARGUMENT,

@@ -33,6 +33,7 @@ rmw_ret_t to_rcutils_string_array(
   rcutils_string_array_t * out)
 {
   if (rcutils_string_array_init(out, in.size(), allocator) != RCUTILS_RET_OK) {
+    rmw_reset_error();  // rcutils' message, replaced by one that says what for
     RMW_SET_ERROR_MSG("cannot allocate a string array");
     return RMW_RET_BAD_ALLOC;
   }
@@ -42,6 +43,7 @@ rmw_ret_t to_rcutils_string_array(
       if (rcutils_string_array_fini(out) != RCUTILS_RET_OK) {
         rcutils_reset_error();
       }
+      rmw_reset_error();
       RMW_SET_ERROR_MSG("cannot allocate a string of a string array");
       return RMW_RET_BAD_ALLOC;
     }
@@ -68,6 +70,7 @@ rmw_ret_t to_rmw_names_and_types(
       if (rmw_names_and_types_fini(out) != RMW_RET_OK) {
         rcutils_reset_error();
       }
+      rmw_reset_error();  // the message of the step that failed, replaced
       RMW_SET_ERROR_MSG("cannot allocate names and types");
       return RMW_RET_BAD_ALLOC;
     }

@@ -103,7 +103,12 @@ rmw_ret_t EventData::take(void * event_info, bool * taken)
         auto info = static_cast<rmw_qos_incompatible_event_status_t *>(event_info);
         info->total_count = static_cast<int32_t>(status.total_count);
         info->total_count_change = static_cast<int32_t>(status.total_count_change);
-        info->last_policy_kind = static_cast<rmw_qos_policy_kind_t>(status.last_policy_kind);
+        // DDS has no policy of its own for the lease duration (it is part of
+        // LIVELINESS), and rcl's test_events expects what the DDS middlewares
+        // report; rmw_qos_profile_check_compatible still names the duration
+        auto kind = static_cast<rmw_qos_policy_kind_t>(status.last_policy_kind);
+        info->last_policy_kind =
+          kind == RMW_QOS_POLICY_LIVELINESS_LEASE_DURATION ? RMW_QOS_POLICY_LIVELINESS : kind;
       }
       break;
     default:
