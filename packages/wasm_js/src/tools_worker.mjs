@@ -9,11 +9,13 @@
  * @module tools_worker
  */
 
-import { BusClient, KIND_CLIENT, KIND_PUBLISHER, KIND_SUBSCRIPTION, TakeMode } from './bus_client.mjs';
+import { BusClient, KIND_CLIENT, KIND_PUBLISHER, KIND_SERVICE, KIND_SUBSCRIPTION, TakeMode } from './bus_client.mjs';
 import { FromTools, ToTools } from './protocol.mjs';
 
 let client = null;
 const subscriptions = new Set();
+/** service server endpoints (rosbridge's advertise_service) */
+const servers = new Set();
 const publishers = new Map();
 /** service name key -> client endpoint */
 const clientByKey = new Map();
@@ -50,6 +52,17 @@ function drain() {
       transfer.push(data.buffer);
     }
     if (messages.length) post({ type: FromTools.BATCH, subscription: ep, messages }, transfer);
+  }
+  for (const ep of servers) {
+    const requests = [];
+    const transfer = [];
+    let data;
+    while ((data = client.take(ep, TakeMode.REQUEST))) {
+      const i = client.info;
+      requests.push({ data, id: { gid: Array.from(i.gid), seqLo: i.reqLo, seqHi: i.reqHi }, info: infoOf(client) });
+      transfer.push(data.buffer);
+    }
+    if (requests.length) post({ type: FromTools.REQUESTS, service: ep, requests }, transfer);
   }
   for (const [ep, pending] of clients) {
     let data;
@@ -88,7 +101,9 @@ function arm() {
 }
 
 function endpoint(spec, kind) {
-  return client.createEndpoint({ kind, node: spec.node, name: spec.name, type: spec.type, qos: spec.qos || {} }).index;
+  return client.createEndpoint({
+    kind, node: spec.node, name: spec.name, type: spec.type, qos: spec.qos || {}, ignoreLocal: !!spec.ignoreLocal,
+  }).index;
 }
 
 const methods = {
@@ -140,8 +155,18 @@ const methods = {
       drain();
     });
   },
+  serve(spec) {
+    const ep = endpoint(spec, KIND_SERVICE);
+    servers.add(ep);
+    Promise.resolve().then(drain);
+    return ep;
+  },
+  respond(ep, id, data, timeoutMs) {
+    return client.sendResponse(ep, id.gid, id.seqLo, id.seqHi, data, timeoutMs);
+  },
   destroy(ep) {
     subscriptions.delete(ep);
+    servers.delete(ep);
     client.destroyEndpoint(ep);
   },
 };
