@@ -35,7 +35,7 @@ def add_rosbridge_arguments(parser):
     parser.add_argument(
         '--rosbridge', nargs='?', const='{}:{}'.format(DEFAULT_HOST, DEFAULT_PORT),
         metavar='[HOST:]PORT',
-        help='Serve the rosbridge v2 protocol (roslibjs, roslibpy) over the nodes\' bus on '
+        help="Serve the rosbridge v2 protocol (roslibjs, roslibpy) over the nodes' bus on "
              'HOST:PORT (default {}:{}; only this machine unless HOST names another address; '
              'port 0 picks a free one)'.format(DEFAULT_HOST, DEFAULT_PORT))
     parser.add_argument(
@@ -140,8 +140,9 @@ def bridge_plan(args, *, err=None):
             'capabilities': capabilities, 'limits': limits,
         }
         if not is_loopback(host) and err is not None:
-            print('warning: --rosbridge listens on {}: other machines can drive your nodes{}'.format(
-                host, '' if args.rosbridge_token else ' (no --rosbridge-token)'), file=err)
+            missing = '' if args.rosbridge_token else ' (no --rosbridge-token)'
+            print('warning: --rosbridge listens on {}: other machines can drive your '
+                  'nodes{}'.format(host, missing), file=err)
     elif getattr(args, 'rosbridge_capabilities', None):
         raise LaunchError('--rosbridge-capabilities applies to a server: add --rosbridge')
     if getattr(args, 'rosbridge_connect', None):
