@@ -9,7 +9,7 @@
 ``/launcher/<file>``       the page's modules and styles (``templates/launcher``)
 ``/wasm_js/<file>``        the JS runtime (``share/wasm_js`` of the install
                            space, else the copy inside colcon-wasm); its
-                           page-side modules ``cdr.mjs`` and ``tools/`` always
+                           page-side modules ``cdr.mjs``, ``tools/`` and ``bridges/`` always
                            come with colcon-wasm, like the page itself
 ``/workspace.json``        packages, executables and type descriptions, from
                            the manifests (read anew on each request)
@@ -39,7 +39,7 @@ PAGE_TEMPLATE = 'index.html'
 PAGE_MODULE = '/launcher/app.mjs'
 # /wasm_js/ entries that belong to the page (same version as the page), not
 # to the runtime the executables were built with
-PAGE_MODULES = ('cdr.mjs', 'tools')
+PAGE_MODULES = ('cdr.mjs', 'tools', 'bridges')
 
 # static `import ... from '<url>'` and `export ... from '<url>'` of an ES module
 _IMPORT = re.compile(r"""^\s*(?:import|export)\b[^'"]*?\bfrom\s*['"]([^'"]+)['"]"""

@@ -179,6 +179,8 @@ async function main() {
     stopping = true;
     out(`[INFO] [launch]: ${why}`);
     loader.shutdown();
+    // bridged peers see the end first, so they keep what they send (rosbridge client queues)
+    if (bridges) await bridges.close();
     await Promise.all([...handles.entries()].map(async ([label, handle]) => {
       if (states.get(label) !== 'running') return;
       await handle.stop();
@@ -201,7 +203,7 @@ async function main() {
   process.on('SIGTERM', () => stopAll('terminated (SIGTERM)'));
   checkDone();
   await done;
-  if (bridges) await bridges.close();
+  if (bridges) await bridges.close(); // closing twice is harmless
   if (runtime.close) await runtime.close();
   return failed ? 1 : 0;
 }

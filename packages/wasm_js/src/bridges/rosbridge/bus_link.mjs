@@ -42,7 +42,7 @@ class Tap {
   }
 
   start(options) {
-    const qos = subscriptionQos(this.link.publisherQosOf(this.topic));
+    const qos = options.qos || subscriptionQos(this.link.publisherQosOf(this.topic));
     this.ready = this.link.tools.subscribe({
       topic: this.topic, type: this.type, qos, node: this.link.node, ignoreLocal: options.ignoreLocal,
     }, (batch) => {
@@ -133,9 +133,10 @@ export class BusLink {
 
   /**
    * Listen to a topic; the bus subscription is shared.
+   * @param {object} [qos] the subscription's QoS (default: as `ros2 topic echo` picks it)
    * @returns {Promise<function(): void>} stop listening
    */
-  async listen(topic, type, listener) {
+  async listen(topic, type, listener, qos = undefined) {
     const full = normalizeTypeName(type);
     let tap = this._taps.get(topic);
     if (tap && tap.type !== full) {
@@ -144,7 +145,7 @@ export class BusLink {
     if (!tap) {
       tap = new Tap(this, topic, full);
       this._taps.set(topic, tap);
-      tap.start({ ignoreLocal: this.ignoreLocal }).catch(() => this._taps.delete(topic));
+      tap.start({ ignoreLocal: this.ignoreLocal, qos }).catch(() => this._taps.delete(topic));
     }
     tap.listeners.add(listener);
     try {
