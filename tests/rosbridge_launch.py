@@ -14,6 +14,7 @@ killed if it does not stop.
 """
 
 from pathlib import Path
+import os
 import re
 import signal
 import subprocess
@@ -38,8 +39,10 @@ class BackgroundLaunch:
         self._lock = threading.Lock()
         command = [str(demo_build.venv_tool('colcon-wasm')), 'launch', '--install-base',
                    str(install), '--duration', str(duration), *map(str, args)]
+        # its own process group: SIGINT reaches the Node host as Ctrl-C does
         self.process = subprocess.Popen(command, stdout=subprocess.PIPE,
-                                        stderr=subprocess.STDOUT, text=True)
+                                        stderr=subprocess.STDOUT, text=True,
+                                        start_new_session=True)
         self._reader = threading.Thread(target=self._read, daemon=True)
         self._reader.start()
         self.url = None
@@ -89,14 +92,21 @@ class BackgroundLaunch:
     def stop(self):
         """Stop the launch (SIGINT, then kill); return its exit status."""
         if self.process.poll() is None:
-            self.process.send_signal(signal.SIGINT)
+            self._signal(signal.SIGINT)
             try:
                 self.process.wait(timeout=20)
             except subprocess.TimeoutExpired:
-                self.process.kill()
+                self._signal(signal.SIGKILL)
                 self.process.wait(timeout=10)
+        self._signal(signal.SIGKILL)  # anything of the group left behind
         self._reader.join(timeout=5)
         return self.process.returncode
+
+    def _signal(self, number):
+        try:
+            os.killpg(self.process.pid, number)
+        except ProcessLookupError:
+            pass
 
     def __enter__(self):  # noqa: D105
         return self

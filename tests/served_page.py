@@ -66,11 +66,11 @@ class ServedPage:
         self.process.terminate()
         self.process.wait(10)
 
-    def run(self, steps, timeout_ms=90000):
-        """Run page_session.mjs steps in a new page; returns its result."""
+    def run(self, steps, timeout_ms=90000, query=''):
+        """Run page_session.mjs steps in a new page (its URL + ``query``); returns its result."""
         completed = subprocess.run(
             ['node', str(JS / 'page_session.mjs'), json.dumps(
-                {'url': self.url, 'chromium': CHROMIUM, 'steps': steps,
+                {'url': self.url + query, 'chromium': CHROMIUM, 'steps': steps,
                  'timeoutMs': timeout_ms})],
             capture_output=True, text=True, timeout=timeout_ms / 1000 + 120)
         lines = completed.stdout.strip().splitlines()

@@ -143,6 +143,16 @@ class Site:
             'environment': {AMENT_PREFIX_PATH: ':'.join(ament_prefixes(self.views.bases))},
         }
 
+    def _base_of(self, package):
+        """Return the install base (the install space's, or an underlay's) of a package."""
+        for base in [self.install_space.base, *self.views.bases]:
+            try:
+                Path(package.prefix).relative_to(base)
+                return Path(base)
+            except ValueError:
+                continue
+        return self.install_space.base
+
     def _url(self, package, path):
         return '/ws/{}/{}'.format(package.name, Path(path).relative_to(package.prefix).as_posix())
 
@@ -203,9 +213,9 @@ class Site:
             package = self._allowed_files().get((package_name, relative))
             if package is None:
                 raise Refused(404, 'not found: only files listed in the manifests are served')
-            return Content(path=resolve_under(self.install_space.base,
-                                              list(Path(package.prefix, relative).relative_to(
-                                                  self.install_space.base).parts)))
+            base = self._base_of(package)
+            parts = Path(package.prefix, relative).relative_to(base).parts
+            return Content(path=resolve_under(base, list(parts)))
         if head == VIEWS_PREFIX and rest:
             walk = (query or {}).get('walk')
             kind, value = self.views.content(rest[0], rest[1:], directory,

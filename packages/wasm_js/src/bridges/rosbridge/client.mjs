@@ -193,8 +193,9 @@ export class RosbridgeClient {
     this.onChange(this);
   }
 
+  /** Open, and not closing (a message sent while closing would be lost: it is queued instead). */
   get connected() {
-    return this.state === 'connected' && this.ws !== null;
+    return this.state === 'connected' && this.ws !== null && this.ws.readyState === 1;
   }
 
   _send(obj) {
@@ -614,7 +615,18 @@ export class RosbridgeClient {
         const bytes = this.registry.encode(p.entry.response, this.converter.fromJson(p.entry.response, values || {}));
         const server = p.server || await p.ready;
         await server.respond(r.id, bytes);
-      }, (e) => this.log('warning', `${p.service} on ${this.displayUrl} failed: ${e.message} (the local caller gets no response)`));
+      }, (e) => {
+        // the remote server may not be there yet: try again within the caller's time
+        if (/does not exist/.test(e.message) && Date.now() - at + 250 < this.limits.callTimeoutMs) {
+          const t = setTimeout(() => {
+            p.waiting.push({ r, at });
+            if (this.connected) this._sendWaitingCalls(p);
+          }, 250);
+          if (t.unref) t.unref();
+          return;
+        }
+        this.log('warning', `${p.service} on ${this.displayUrl} failed: ${e.message} (the local caller gets no response)`);
+      });
     }
   }
 

@@ -112,13 +112,16 @@ export class RosbridgeServer {
     this.http.on('upgrade', (req, socket, head) => this._upgrade(req, socket, head));
   }
 
-  _listen() {
-    return new Promise((resolve, reject) => {
+  async _listen() {
+    // the bus side first: a client that connects at once finds it ready
+    const tools = await this.runtime.tools();
+    this.core.link = await BusLink.create({ runtime: this.runtime, tools, nodeName: 'rosbridge_websocket' });
+    await new Promise((resolve, reject) => {
       const onError = (e) => {
         const where = `${this.host}:${this.port}`;
         if (e.code === 'EADDRINUSE') {
           reject(new RosbridgeError(`port ${this.port} on ${this.host} is already in use (another rosbridge server, `
-            + `or another server?): stop it, or pass --rosbridge HOST:PORT (port 0 picks a free port)`));
+            + 'or another server?): stop it, or pass --rosbridge HOST:PORT (port 0 picks a free port)'));
         } else if (e.code === 'EACCES') {
           reject(new RosbridgeError(`no permission to listen on port ${this.port} of ${this.host}: use a port above 1023, e.g. --rosbridge 9090`));
         } else if (e.code === 'EADDRNOTAVAIL' || e.code === 'ENOTFOUND') {
@@ -128,17 +131,10 @@ export class RosbridgeServer {
         }
       };
       this.http.once('error', onError);
-      this.http.listen(this.port, this.host, async () => {
+      this.http.listen(this.port, this.host, () => {
         this.http.off('error', onError);
         this.port = this.http.address().port;
-        try {
-          const tools = await this.runtime.tools();
-          this.core.link = await BusLink.create({ runtime: this.runtime, tools, nodeName: 'rosbridge_websocket' });
-          resolve();
-        } catch (e) {
-          this.http.close();
-          reject(e);
-        }
+        resolve();
       });
     });
   }
@@ -188,14 +184,24 @@ export class RosbridgeServer {
     return { ...this.core.stats, connected: this.sessions.size, sessions };
   }
 
-  /** Stop listening and close every client. */
-  async close() {
-    for (const s of [...this.sessions]) {
-      s.end();
+  /**
+   * Stop listening and close every client: the closing handshake first
+   * (what a client sent before it saw the close is still published), at
+   * most `graceMs`, then the sockets.
+   */
+  async close(graceMs = 1500) {
+    const closing = new Promise((resolve) => this.http.close(() => resolve()));
+    await Promise.all([...this.sessions].map(async (s) => {
+      const ended = new Promise((resolve) => {
+        const previous = s.conn.onclose;
+        s.conn.onclose = (e) => { if (previous) previous(e); resolve(); };
+      });
       s.conn.close(1001, 'the server is stopping');
+      await Promise.race([ended, new Promise((r) => setTimeout(r, graceMs))]);
+      s.end();
       s.conn.terminate();
-    }
-    await new Promise((resolve) => this.http.close(() => resolve()));
+    }));
+    await closing;
   }
 }
 
