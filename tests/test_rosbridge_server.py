@@ -60,6 +60,7 @@ def server(install, tmp_path_factory):
     with BackgroundLaunch(install, '--rosbridge', '127.0.0.1:0', '--rosbridge-max-queued-bytes',
                           MAX_QUEUED, path) as run:
         run.wait_for('NAME /talker TOPIC /chatter', timeout=60)
+        run.wait_for('[bench_pong]: READY', timeout=60)
         yield run
 
 

@@ -132,7 +132,8 @@ export class Tools {
   /**
    * Create a publisher.
    * @param {object} spec {topic, type, qos, node?, domain?}
-   * @returns {Promise<{id: number, publish: function(Uint8Array): Promise<number>, close: function(): Promise<void>}>}
+   * @returns {Promise<{id: number, publish: function(Uint8Array): Promise<number>,
+   *   publishMany: function(Uint8Array[]): Promise<number>, close: function(): Promise<void>}>}
    */
   async advertise(spec) {
     const node = await this._node(spec);
@@ -140,6 +141,8 @@ export class Tools {
     return {
       id,
       publish: (data) => this._call('publish', [id, data]),
+      /** Publish several messages in one call (one message to the worker); resolves to the last sequence number. */
+      publishMany: (list) => this._call('publishMany', [id, list]),
       close: () => this._call('destroy', [id]),
     };
   }

@@ -22,6 +22,21 @@ const clientByKey = new Map();
 /** client endpoint -> Map(sequence number -> pending call) */
 const clients = new Map();
 let armed = false;
+let drainQueued = false;
+
+/**
+ * Drain once the current call is done: a subscription of this process to a
+ * topic it publishes on gets the message now, not at the next wake-up (a
+ * burst of publishes would otherwise overrun a KEEP_LAST reader's history).
+ */
+function drainSoon() {
+  if (drainQueued) return;
+  drainQueued = true;
+  queueMicrotask(() => {
+    drainQueued = false;
+    drain();
+  });
+}
 
 const post = (m, transfer) => (typeof self !== 'undefined' && self.postMessage
   ? self.postMessage(m, transfer || [])
@@ -125,7 +140,15 @@ const methods = {
     return endpoint(spec, KIND_PUBLISHER);
   },
   publish(ep, data) {
-    return client.publish(ep, data, 10000);
+    const seq = client.publish(ep, data, 10000);
+    if (subscriptions.size) drainSoon();
+    return seq;
+  },
+  publishMany(ep, list) {
+    let seq = 0;
+    for (const data of list) seq = client.publish(ep, data, 10000);
+    if (subscriptions.size) drainSoon();
+    return seq;
   },
   publishOnce(spec, data) {
     const key = JSON.stringify([spec.node, spec.name, spec.type, spec.qos || {}]);
@@ -134,7 +157,9 @@ const methods = {
       ep = endpoint(spec, KIND_PUBLISHER);
       publishers.set(key, ep);
     }
-    return client.publish(ep, data, 10000);
+    const seq = client.publish(ep, data, 10000);
+    if (subscriptions.size) drainSoon();
+    return seq;
   },
   call(spec, request, timeoutMs) {
     const key = JSON.stringify([spec.node, spec.name, spec.type, spec.qos || {}]);

@@ -79,7 +79,8 @@ class ClientSubscription {
   }
 
   lifespan(info) {
-    const key = info.publisherGid.join(',');
+    const g = info.publisherGid;
+    const key = g[1] * 16777216 + (g[2] & 0xffffff);
     let ms = this._lifespans.get(key);
     if (ms === undefined) {
       ms = this.core.link.lifespanOf(this.topic, info.publisherGid);

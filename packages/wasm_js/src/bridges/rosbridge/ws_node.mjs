@@ -105,19 +105,41 @@ export class WebSocketConnection {
     }
   }
 
+  /** Cork the socket until the end of this turn: the frames of one turn go out in one write. */
+  _cork() {
+    if (this._corked) return;
+    this._corked = true;
+    this.socket.cork();
+    process.nextTick(() => {
+      this._corked = false;
+      this.socket.uncork();
+    });
+  }
+
   _write(opcode, payload) {
+    this._cork();
     const [header, body] = encodeFrame(opcode, payload, { mask: this.client });
     if (body.length < 1024) {
-      const one = new Uint8Array(header.length + body.length);
+      const one = Buffer.allocUnsafe(header.length + body.length);
       one.set(header);
       one.set(body, header.length);
       return this.socket.write(one);
     }
-    this.socket.cork();
     this.socket.write(header);
-    const ok = this.socket.write(body);
-    this.socket.uncork();
-    return ok;
+    return this.socket.write(body);
+  }
+
+  /** A text frame written straight from the string (a server's frames are not masked). */
+  _writeText(text) {
+    const len = Buffer.byteLength(text);
+    const headerBytes = len < 126 ? 2 : len < 65536 ? 4 : 10;
+    const frame = Buffer.allocUnsafe(headerBytes + len);
+    frame[0] = 0x80 | Opcode.TEXT;
+    if (headerBytes === 2) frame[1] = len;
+    else if (headerBytes === 4) { frame[1] = 126; frame.writeUInt16BE(len, 2); } else { frame[1] = 127; frame.writeBigUInt64BE(BigInt(len), 2); }
+    frame.write(text, headerBytes, 'utf8');
+    this._cork();
+    return this.socket.write(frame);
   }
 
   /**
@@ -126,7 +148,7 @@ export class WebSocketConnection {
    */
   send(data) {
     if (this.readyState !== ReadyState.OPEN) return false;
-    if (typeof data === 'string') return this._write(Opcode.TEXT, enc.encode(data));
+    if (typeof data === 'string') return this.client ? this._write(Opcode.TEXT, enc.encode(data)) : this._writeText(data);
     const bytes = data instanceof Uint8Array ? data : new Uint8Array(data);
     return this._write(Opcode.BINARY, bytes);
   }
