@@ -83,6 +83,7 @@ class Site:
         self.launcher_dir = Path(launcher_dir)
         self.runtime_dir = Path(runtime_dir)
         self.page_modules_dir = Path(page_modules_dir or runtime_dir)
+        self.relay_path = None
         self.runtime_origin = runtime_origin
         self.runtime_entry = runtime_entry
         self.title = title or 'colcon-wasm: {}'.format(install_space.base.parent.name)
@@ -138,6 +139,8 @@ class Site:
             'runtime': '/wasm_js/' + self.runtime_entry,
             'runtime_origin': self.runtime_origin,
             'warnings': warnings,
+            # serve --rosbridge: the page bridges its nodes to the relay at this path
+            'rosbridge': self.relay_path,
             # what every program started by the page sees (install_view.py)
             'mounts': self.views.mounts(),
             'environment': {AMENT_PREFIX_PATH: ':'.join(ament_prefixes(self.views.bases))},

@@ -168,7 +168,9 @@ async function main() {
     banners.append(h('div.banner.warn', {}, `Type descriptions: ${session.typeError}`));
   }
   // ?rosbridge=ws://HOST:PORT bridges the page's nodes to a rosbridge server
-  const rosbridge = new URLSearchParams(location.search).get('rosbridge');
+  // (serve --rosbridge: the relay of serve itself, so that tabs share one graph)
+  const relay = workspace.rosbridge ? `${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}${workspace.rosbridge}` : null;
+  const rosbridge = new URLSearchParams(location.search).get('rosbridge') || relay;
   if (rosbridge) {
     session.connectBridge(rosbridge).catch((e) => banners.append(h('div.banner.warn', {}, `?rosbridge=${rosbridge}: ${e.message}`)));
   }

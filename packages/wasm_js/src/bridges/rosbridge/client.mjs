@@ -107,6 +107,8 @@ export class RosbridgeClient {
     this.log = log || (() => {});
     this.onChange = onChange || (() => {});
     this.wantRemoteGraph = remoteGraph;
+    this.relay = false; // the server is serve's relay (it greets with colcon_wasm_relay)
+    this._reported = null;
     this.state = 'connecting';
     this.remote = { nodes: [], topics: [], services: [] };
     this.ws = null;
@@ -166,6 +168,7 @@ export class RosbridgeClient {
     const again = this.counters.connects > 1;
     this.state = 'connected';
     this.log('info', `${again ? 'reconnected' : 'connected'} to ${this.displayUrl}`);
+    this._reported = null;
     this._send({ op: 'set_level', level: 'warning' });
     for (const b of [...this.out.values(), ...this.draining]) this._advertise(b);
     for (const b of this.in.values()) this._subscribe(b);
@@ -246,6 +249,7 @@ export class RosbridgeClient {
       case 'call_service': this._remoteCall(msg); break;
       case 'status': this.log(msg.level === 'error' ? 'error' : 'warning', `${this.displayUrl}: ${msg.msg}`); break;
       case 'fragment': this._fragment(msg); break;
+      case 'colcon_wasm_relay': this._relayMode(); break;
       default: break;
     }
   }
@@ -313,6 +317,7 @@ export class RosbridgeClient {
       const b = this.out.get(name);
       if (b) b.publishers = w.publishers;
     }
+    this._reportGraph();
     this.onChange(this);
   }
 
@@ -505,7 +510,30 @@ export class RosbridgeClient {
   }
 
   _subscribe(b) {
-    this._send({ op: 'subscribe', id: `bridge:${b.topic}`, topic: b.topic, type: b.type, compression: 'cbor-raw' });
+    // CDR bytes as they are, unless the server is serve's relay (JSON only)
+    this._send({ op: 'subscribe', id: `bridge:${b.topic}`, topic: b.topic, type: b.type, compression: this.relay ? 'none' : 'cbor-raw' });
+  }
+
+  /**
+   * The server is `colcon-wasm serve --rosbridge`'s relay (it said so): it
+   * forwards JSON, and shows the nodes each client reports in its rosapi.
+   */
+  _relayMode() {
+    if (this.relay) return;
+    this.relay = true;
+    for (const b of this.in.values()) this._subscribe(b);
+    this._reported = null;
+    this._reportGraph();
+  }
+
+  _reportGraph() {
+    if (!this.relay || !this.connected) return;
+    const nodes = this.link.rawGraph().nodes.map((n) => `${n.namespace === '/' ? '' : n.namespace}/${n.name}`)
+      .filter((fqn) => !BRIDGE_NODES.has(fqn)).sort();
+    const key = nodes.join('\n');
+    if (key === this._reported) return;
+    this._reported = key;
+    this._send({ op: 'colcon_wasm_graph', nodes });
   }
 
   _remotePublish(msg) {
