@@ -179,8 +179,12 @@ async function main() {
     stopping = true;
     out(`[INFO] [launch]: ${why}`);
     loader.shutdown();
-    // bridged peers see the end first, so they keep what they send (rosbridge client queues)
-    if (bridges) await bridges.close();
+    // bridged peers see the end first, so they keep what they send (rosbridge client queues),
+    // and the nodes get a moment to take what the bridges delivered last
+    if (bridges) {
+      await bridges.close();
+      await new Promise((resolve) => setTimeout(resolve, 250));
+    }
     await Promise.all([...handles.entries()].map(async ([label, handle]) => {
       if (states.get(label) !== 'running') return;
       await handle.stop();

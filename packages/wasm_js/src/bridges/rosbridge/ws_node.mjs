@@ -289,6 +289,15 @@ export class NodeWebSocket {
     return this._conn ? this._conn.bufferedAmount : 0;
   }
 
+  /** CONNECTING, OPEN, CLOSING (a close frame came or went: send() would drop), CLOSED. */
+  get readyState() {
+    return this._conn ? this._conn.readyState : this._state;
+  }
+
+  set readyState(state) {
+    this._state = state;
+  }
+
   _fail(error, code = 1006) {
     if (this.readyState === ReadyState.CLOSED) return;
     this.readyState = ReadyState.CLOSED;
