@@ -171,3 +171,31 @@ def test_page_bridged_to_a_node_launch_both_ways(install, tmp_path):
     assert '/add_server remote {}'.format(server.url) in remote, remote
     assert '/news_talker remote' in remote, remote
     assert result['saved']['chip'] == 'rosbridge: connected', result['saved']
+
+
+@pytest.mark.parametrize('server_side, client_side', [
+    ('action_server_not_composable', 'action_client_not_composable_with_feedback'),
+    ('action_client_not_composable_with_feedback', 'action_server_not_composable'),
+], ids=['remote_server', 'remote_client'])
+def test_actions_cross_the_bridge(install, tmp_path, server_side, client_side):
+    """A C++ action client and server on either side: goal, feedback and result cross."""
+    def launch_file(name, exe):
+        package = 'examples_rclcpp_minimal_action_{}'.format(
+            'server' if 'server' in exe else 'client')
+        return _write(tmp_path, name, """
+            launch:
+            - node: {{pkg: {}, exec: {}}}
+        """.format(package, exe))
+    with BackgroundLaunch(install, '--rosbridge', '127.0.0.1:0',
+                          launch_file('a.launch.yaml', server_side)) as server:
+        with BackgroundLaunch(install, '--rosbridge-connect', server.url,
+                              launch_file('b.launch.yaml', client_side), wait_url=False) as client:
+            client.wait_for('connected to {}'.format(server.url), timeout=30)
+            where = client if 'client' in client_side else server
+            where.wait_for('result received', timeout=60)
+            where.wait_for('process has finished cleanly', timeout=10)
+            output = where.output()
+    numbers = [int(n) for n in re.findall(r'\[minimal_action_client\]: (\d+)$', output, re.M)]
+    assert numbers == [0, 1, 1, 2, 3, 5, 8, 13, 21, 34, 55], output[-3000:]
+    feedback = re.findall(r'Next number in sequence received: (\d+)', output)
+    assert len(feedback) >= 5, output[-3000:]

@@ -15,6 +15,7 @@ image echo) and examples_rclcpp_minimal_action_server (Fibonacci). All on
 
 import json
 from pathlib import Path
+import re
 import socket
 import subprocess
 import sys
@@ -100,6 +101,23 @@ def test_roslibjs_action_feedback_result_cancel(server):
     assert r['feedback'] == [[0, 1, 1], [0, 1, 1, 2]]
     assert 'canceled' in r['cancelled'].get('error', ''), r['cancelled']
     server.wait_for('Goal Canceled', timeout=10)
+
+
+def test_roslibjs_serves_an_action_a_cpp_client_uses(install, tmp_path):
+    """advertise_action: the C++ minimal action client's goal, feedback and result cross."""
+    path = tmp_path / 'client.launch.yaml'
+    path.write_text(textwrap.dedent("""
+        launch:
+        - node: {pkg: examples_rclcpp_minimal_action_client, exec: action_client_not_composable}
+    """).lstrip(), encoding='utf-8')
+    with BackgroundLaunch(install, '--rosbridge', '127.0.0.1:0', path) as run:
+        r = node_script('rosbridge_roslib.mjs', 'serveAction', run.url)
+        assert r['goals'] == [{'order': 10}], r
+        run.wait_for('result received', timeout=20)
+        run.wait_for('process has finished cleanly', timeout=20)
+        output = run.output()
+    numbers = [int(n) for n in re.findall(r'\[minimal_action_client\]: (\d+)$', output, re.M)]
+    assert numbers == [0, 1, 1, 2, 3, 5, 8, 13, 21, 34, 55], output[-3000:]
 
 
 def test_roslibjs_throttle_rate_and_queue_length(server):

@@ -96,6 +96,27 @@ const scenarios = {
     return { feedback, result, cancelled };
   },
 
+  /** Serve an action (advertise_action) that a C++ action client uses: feedback, then the result. */
+  async serveAction() {
+    const ros = await connect();
+    const action = new ROSLIB.Action({ ros, name: '/fibonacci', actionType: 'example_interfaces/action/Fibonacci' });
+    const goals = [];
+    action.advertise(async (goal, id) => {
+      goals.push(goal);
+      const seq = [0, 1];
+      for (let i = 1; i < goal.order; i++) {
+        seq.push(seq[i] + seq[i - 1]);
+        action.sendFeedback(id, { sequence: seq });
+        await sleep(20);
+      }
+      action.setSucceeded(id, { sequence: seq });
+    }, () => {});
+    await within(30000, 'a goal from the C++ client', (async () => { while (!goals.length) await sleep(50); })());
+    await sleep(1500);
+    ros.close();
+    return { goals };
+  },
+
   /** throttle_rate and queue_length on a 10 Hz topic, each on its own connection. */
   async throttle() {
     const count = async (options, ms) => {

@@ -11,25 +11,18 @@
  *  - advertise_action / unadvertise_action, action_feedback, action_result:
  *    the client is the action server. The bridge serves the action's
  *    send_goal, cancel_goal and get_result services and publishes its
- *    feedback and status topics, as rclcpp_action's server does; goals are
- *    accepted (as rosbridge_library's server does) and passed to the client
- *    as send_action_goal, cancels as cancel_action_goal.
+ *    feedback and status topics (action_server.mjs); goals are accepted (as
+ *    rosbridge_library's server does) and passed to the client as
+ *    send_action_goal, cancels as cancel_action_goal.
  *
  * @module bridges/rosbridge/actions
  */
 
 import { ActionClient } from '../../tools/ros_clients.mjs';
+import { BusActionServer } from './action_server.mjs';
 import { stringifyJson } from './json.mjs';
 import { field, FieldError, GoalStatus, rosName } from './protocol.mjs';
 
-const FEEDBACK_QOS = { history: 'keep_last', depth: 10, reliability: 'reliable', durability: 'volatile' };
-const STATUS_QOS = { history: 'keep_last', depth: 1, reliability: 'reliable', durability: 'transient_local' };
-const KEPT_RESULTS = 100;
-const hex = (uuid) => Array.from(uuid, (b) => b.toString(16).padStart(2, '0')).join('');
-const stampNow = () => {
-  const ms = Date.now();
-  return { sec: Math.floor(ms / 1000), nanosec: (ms % 1000) * 1e6 };
-};
 
 /** Register the action operations on a session. */
 export function installActions(session) {
@@ -123,7 +116,17 @@ export function installActions(session) {
       previous.session.status('warning', `action ${action} was advertised again by another client: this client no longer serves it`);
       previous.close();
     }
-    const server = new ActionServer(session, action, full, spec);
+    const server = new BusActionServer({
+      link, registry, converter, action, full, spec,
+      onGoal: (rid, goalJson) => session.sendText(`{"op":"send_action_goal","id":${JSON.stringify(rid)},"action":${JSON.stringify(action)},"action_type":${JSON.stringify(full)},"args":${goalJson},"feedback":true}`),
+      onCancel: (rid) => session.sendText(`{"op":"cancel_action_goal","id":${JSON.stringify(rid)},"action":${JSON.stringify(action)}}`),
+      onError: (text) => session.status('error', text),
+      onClose: () => {
+        if (core.actions.get(action) === server) core.actions.delete(action);
+        served.delete(action);
+      },
+    });
+    server.session = session;
     await server.start();
     served.set(action, server);
     core.actions.set(action, server);
@@ -167,117 +170,4 @@ export function installActions(session) {
     goals.clear();
   });
 
-  /** An action served by this client, on the bus. */
-  class ActionServer {
-    constructor(owner, action, full, spec) {
-      this.session = owner;
-      this.action = action;
-      this.full = full;
-      this.spec = spec;
-      this.goals = new Map();
-      this.byRid = new Map();
-      this.seq = 0;
-      this.handles = [];
-    }
-
-    async start() {
-      const { action, full, spec } = this;
-      const base = `${action}/_action`;
-      this.feedbackPub = await link.publisher(`${base}/feedback`, spec.feedback_message, FEEDBACK_QOS);
-      this.statusPub = await link.publisher(`${base}/status`, 'action_msgs/msg/GoalStatusArray', STATUS_QOS);
-      const serve = async (name, type, entry, onRequest) => {
-        const h = await link.serve(`${base}/${name}`, type, (requests) => {
-          for (const r of requests) {
-            let value;
-            try {
-              value = registry.decode(entry.request, r.data);
-            } catch (e) {
-              this.session.status('error', `a ${name} request of ${action} could not be decoded: ${e.message}`);
-              continue;
-            }
-            Promise.resolve(onRequest(value, (response) => h.respond(r.id, registry.encode(entry.response, response))))
-              .catch((e) => this.session.status('error', `${action} ${name}: ${e.message}`));
-          }
-        });
-        this.handles.push(h);
-      };
-      await serve('send_goal', `${full}_SendGoal`, spec.send_goal, (req, respond) => this.goal(req, respond));
-      await serve('cancel_goal', 'action_msgs/srv/CancelGoal', registry.service('action_msgs/srv/CancelGoal'), (req, respond) => this.cancel(req, respond));
-      await serve('get_result', `${full}_GetResult`, spec.get_result, (req, respond) => this.getResult(req, respond));
-    }
-
-    publishStatus() {
-      const list = [...this.goals.values()].map((g) => ({ goal_info: { goal_id: { uuid: g.uuid }, stamp: g.stamp }, status: g.status }));
-      this.statusPub.publish(registry.encode('action_msgs/msg/GoalStatusArray', { status_list: list })).catch(() => {});
-    }
-
-    async goal(req, respond) {
-      const uuid = req.goal_id.uuid;
-      const rid = `action_goal:${this.action}:${++this.seq}`;
-      const g = { uuid, rid, stamp: stampNow(), status: GoalStatus.EXECUTING, result: null, waiting: [] };
-      this.goals.set(hex(uuid), g);
-      this.byRid.set(rid, g);
-      while (this.goals.size > KEPT_RESULTS) {
-        const [key, old] = this.goals.entries().next().value;
-        this.goals.delete(key);
-        this.byRid.delete(old.rid);
-      }
-      await respond({ accepted: true, stamp: g.stamp });
-      this.publishStatus();
-      this.session.sendText(`{"op":"send_action_goal","id":${JSON.stringify(rid)},"action":${JSON.stringify(this.action)},"action_type":${JSON.stringify(this.full)},"args":${converter.jsonWriter(this.spec.goal)(req.goal)},"feedback":true}`);
-    }
-
-    async cancel(req, respond) {
-      const uuid = req.goal_info.goal_id.uuid;
-      const all = uuid.every((b) => b === 0);
-      const canceling = [];
-      for (const g of this.goals.values()) {
-        if (g.result || !(all || hex(g.uuid) === hex(uuid))) continue;
-        g.status = GoalStatus.CANCELING;
-        canceling.push({ goal_id: { uuid: g.uuid }, stamp: g.stamp });
-        this.session.sendText(`{"op":"cancel_action_goal","id":${JSON.stringify(g.rid)},"action":${JSON.stringify(this.action)}}`);
-      }
-      await respond({ return_code: canceling.length ? 0 : 2, goals_canceling: canceling });
-      if (canceling.length) this.publishStatus();
-    }
-
-    async getResult(req, respond) {
-      const g = this.goals.get(hex(req.goal_id.uuid));
-      if (!g) {
-        await respond({ status: GoalStatus.UNKNOWN, result: registry.create(this.spec.result) });
-        return;
-      }
-      if (g.result) await respond({ status: g.status, result: g.result });
-      else g.waiting.push(respond);
-    }
-
-    async feedback(g, values) {
-      const feedback = converter.fromJson(this.spec.feedback, values);
-      await this.feedbackPub.publish(registry.encode(this.spec.feedback_message, { goal_id: { uuid: g.uuid }, feedback }));
-    }
-
-    async finish(g, status, values) {
-      const result = converter.fromJson(this.spec.result, values);
-      registry.encode(this.spec.result, result);
-      g.status = status;
-      g.result = result;
-      this.publishStatus();
-      for (const respond of g.waiting.splice(0)) await respond({ status, result });
-    }
-
-    close() {
-      if (core.actions.get(this.action) === this) core.actions.delete(this.action);
-      served.delete(this.action);
-      for (const g of this.goals.values()) {
-        if (!g.result) {
-          g.status = GoalStatus.ABORTED;
-          g.result = registry.create(this.spec.result);
-          for (const respond of g.waiting.splice(0)) respond({ status: g.status, result: g.result }).catch(() => {});
-        }
-      }
-      for (const h of this.handles) h.close().catch(() => {});
-      if (this.feedbackPub) this.feedbackPub.release();
-      if (this.statusPub) this.statusPub.release();
-    }
-  }
 }

@@ -15,7 +15,11 @@
  *  - a service local nodes serve: advertised remotely, remote calls are
  *    made locally and answered;
  *  - a service local nodes call that no local node serves: served locally
- *    by the bridge, each call made remotely.
+ *    by the bridge, each call made remotely;
+ *  - an action local nodes serve: advertised remotely (advertise_action),
+ *    remote goals sent to it; an action local nodes use that no local node
+ *    serves: served locally by the bridge (action_server.mjs), each goal
+ *    sent remotely (send_action_goal), feedback, result and cancel passed on.
  *
  * The bridge's own endpoints belong to the `/rosbridge_client` node (the
  * remote side shows up there in the local graph views); `/rosout`,
@@ -38,17 +42,17 @@
 
 import { normalizeTypeName } from '../../cdr.mjs';
 import { graphModel } from '../../tools/graph.mjs';
-import { BusLink, gidHex } from './bus_link.mjs';
+import { BusLink } from './bus_link.mjs';
+import { ClientCalls } from './client_calls.mjs';
+import { BRIDGE_NODES, ClientTopics } from './client_topics.mjs';
 import { decodeCbor } from './cbor.mjs';
 import { Capabilities } from './capabilities.mjs';
 import { Converter } from './convert.mjs';
 import { parseJson, stringifyJson } from './json.mjs';
 
 export const CLIENT_NODE = 'rosbridge_client';
-const BRIDGE_NODES = new Set([`/${CLIENT_NODE}`, '/rosbridge_websocket']);
 const DEFAULT_SKIP = new Set(['/rosout', '/parameter_events']);
 const PARAMETER_SERVICES = /\/(describe_parameters|get_parameter_types|get_parameters|list_parameters|set_parameters|set_parameters_atomically)$/;
-const IN_QOS = { history: 'keep_last', depth: 10, reliability: 'reliable', durability: 'transient_local' };
 
 export const CLIENT_LIMITS = Object.freeze({
   maxQueuedBytes: 64 << 20,
@@ -60,12 +64,6 @@ export const CLIENT_LIMITS = Object.freeze({
   echoWindowMs: 5000,
 });
 
-/** A cheap fingerprint of bytes (FNV-1a over length and every byte). */
-function fingerprint(bytes) {
-  let h = 0x811c9dc5 ^ bytes.length;
-  for (let i = 0; i < bytes.length; i++) h = Math.imul(h ^ bytes[i], 16777619);
-  return `${bytes.length}:${h >>> 0}`;
-}
 
 /** The client side of a bridge to one remote rosbridge server. */
 export class RosbridgeClient {
@@ -118,6 +116,9 @@ export class RosbridgeClient {
     this.in = new Map(); // topic -> incoming bridge (local subscribers)
     this.served = new Map(); // service -> local server advertised remotely
     this.proxied = new Map(); // service -> remote server proxied locally
+    this.actionsServed = new Map(); // action -> local action server advertised remotely
+    this.actionsProxied = new Map(); // action -> remote action server proxied locally
+    this.remoteGoals = new Map(); // goal id of the remote side -> local goal handle
     this.pending = new Map(); // call id -> {resolve, reject, timer}
     this.draining = new Set(); // outgoing bridges whose publishers left, with messages to deliver
     this.queuedBytes = 0;
@@ -173,6 +174,7 @@ export class RosbridgeClient {
     for (const b of [...this.out.values(), ...this.draining]) this._advertise(b);
     for (const b of this.in.values()) this._subscribe(b);
     for (const s of this.served.values()) this._advertiseService(s);
+    for (const a of this.actionsServed.values()) this._advertiseAction(a);
     for (const b of [...this.out.values(), ...this.draining]) this._flushWhenHeard(b);
     for (const p of this.proxied.values()) this._sendWaitingCalls(p);
     if (this.wantRemoteGraph) this._pollRemoteGraph();
@@ -247,6 +249,10 @@ export class RosbridgeClient {
         break;
       }
       case 'call_service': this._remoteCall(msg); break;
+      case 'send_action_goal': this._remoteGoal(msg); break;
+      case 'cancel_action_goal': this._remoteCancel(msg); break;
+      case 'action_feedback': this._proxiedFeedback(msg); break;
+      case 'action_result': this._proxiedResult(msg); break;
       case 'status': this.log(msg.level === 'error' ? 'error' : 'warning', `${this.displayUrl}: ${msg.msg}`); break;
       case 'fragment': this._fragment(msg); break;
       case 'colcon_wasm_relay': this._relayMode(); break;
@@ -309,6 +315,20 @@ export class RosbridgeClient {
       if (servers.length) wantServed.set(s.name, { type });
       else if (clients.length) wantProxied.set(s.name, { type });
     }
+    const wantActionsServed = new Map();
+    const wantActionsProxied = new Map();
+    for (const s of raw.services) {
+      const m = /^(.*)\/_action\/send_goal$/.exec(s.name);
+      if (!m || !this._bridged(m[1])) continue;
+      const servers = s.servers.filter((e) => !mine(e));
+      const clients = s.clients.filter((e) => !mine(e));
+      const type = ((servers[0] || clients[0] || {}).type || '').replace(/_SendGoal$/, '');
+      if (!type || !this.registry.actions.has(type)) continue;
+      if (servers.length) wantActionsServed.set(m[1], { type });
+      else if (clients.length) wantActionsProxied.set(m[1], { type });
+    }
+    this._apply(this.actionsServed, wantActionsServed, (name, w) => this._startActionServed(name, w), (a) => this._send({ op: 'unadvertise_action', action: a.action }));
+    this._apply(this.actionsProxied, wantActionsProxied, (name, w) => this._startActionProxied(name, w), (a) => a.server.close());
     this._apply(this.out, wantOut, (name, w) => this._startOut(name, w), (b) => this._stopOut(b));
     this._apply(this.in, wantIn, (name, w) => this._startIn(name, w), (b) => this._stopIn(b));
     this._apply(this.served, wantServed, (name, w) => this._startServed(name, w), (b) => this._stopServed(b));
@@ -330,336 +350,6 @@ export class RosbridgeClient {
       }
     }
     for (const [name, w] of wanted) if (!current.has(name)) current.set(name, start(name, w));
-  }
-
-  // ----------------------------------------------------------- topics out
-
-  _startOut(topic, { type, publishers }) {
-    const b = { topic, type, publishers, queue: [], stop: null, lifespans: new Map(), echoes: new Map(), flushing: false };
-    this._advertise(b);
-    // hear every message the publishers keep: KEEP_ALL publishers wait for a KEEP_ALL reader
-    const qos = publishers.map((e) => e.qos || {});
-    const keepAll = qos.some((q) => q.history === 'keep_all' && q.reliability !== 'best_effort');
-    const tapQos = {
-      history: keepAll ? 'keep_all' : 'keep_last', depth: Math.max(100, ...qos.map((q) => q.depth || 0)),
-      reliability: qos.some((q) => q.reliability === 'best_effort') ? 'best_effort' : 'reliable',
-      durability: qos.length && qos.every((q) => q.durability === 'transient_local') ? 'transient_local' : 'volatile',
-    };
-    this.link.listen(topic, type, (batch) => this._localMessages(b, batch), tapQos).then((stop) => {
-      if (this.out.get(topic) !== b) stop();
-      else b.stop = stop;
-    }, (e) => this.log('error', `cannot bridge ${topic}: ${e.message}`));
-    return b;
-  }
-
-  _stopOut(b) {
-    if (b.stop) b.stop();
-    if (b.kick) clearTimeout(b.kick);
-    if (b.queue.length && !this.closed) {
-      // the publisher is gone, what it sent is not: deliver it, then unadvertise
-      b.draining = true;
-      this.draining.add(b);
-      if (this.connected) this._flushWhenHeard(b);
-      return;
-    }
-    this._send({ op: 'unadvertise', topic: b.topic });
-  }
-
-  _advertise(b) {
-    const q = (b.publishers[0] && b.publishers[0].qos) || {};
-    this._send({
-      op: 'advertise', topic: b.topic, type: b.type, latch: q.durability === 'transient_local',
-      queue_size: q.depth || 10,
-    });
-  }
-
-  _publisherQos(b, gid) {
-    const hex = gidHex(gid);
-    const p = b.publishers.find((e) => e.gid === hex) || b.publishers[0] || {};
-    return p.qos || {};
-  }
-
-  _localMessages(b, batch) {
-    for (const m of batch) {
-      const qos = this._publisherQos(b, m.info.publisherGid);
-      const lifespan = Number.isFinite(qos.lifespanMs) && qos.lifespanMs > 0 ? qos.lifespanMs : 0;
-      const entry = { data: m.data, time: m.info.sourceTime, expires: lifespan ? m.info.sourceTime + lifespan : Infinity, qos };
-      if (this.connected && !b.queue.length && !b.flushing && this.ws.bufferedAmount < this.limits.highWaterBytes) this._publishOut(b, entry);
-      else this._enqueue(b, entry);
-    }
-    if (b.queue.length && this.connected && !b.flushing && !b.kick) {
-      b.kick = setTimeout(() => { b.kick = null; this._flush(b); }, 10);
-    }
-  }
-
-  _enqueue(b, entry) {
-    const qos = entry.qos;
-    if (qos.reliability === 'best_effort') {
-      this.counters.dropped++;
-      return;
-    }
-    if (qos.history !== 'keep_all') {
-      const depth = Math.max(1, qos.depth || 10);
-      while (b.queue.length >= depth) {
-        const old = b.queue.shift();
-        this.queuedBytes -= old.data.length;
-        this.counters.replaced++;
-        b.replaced = (b.replaced || 0) + 1;
-      }
-    } else if (this.queuedBytes + entry.data.length > this.limits.maxQueuedBytes) {
-      this.counters.lost++;
-      b.lost = (b.lost || 0) + 1;
-      return;
-    }
-    b.queue.push(entry);
-    this.queuedBytes += entry.data.length;
-    this.counters.queued++;
-  }
-
-  _dropQueue(b) {
-    for (const e of b.queue) this.queuedBytes -= e.data.length;
-    b.queue = [];
-  }
-
-  _publishOut(b, entry) {
-    if (Date.now() > entry.expires) {
-      this.counters.expired++;
-      return true;
-    }
-    let json;
-    try {
-      json = this.converter.jsonWriter(b.type)(this.registry.decode(b.type, entry.data));
-    } catch (e) {
-      this.log('error', `cannot bridge a message of ${b.topic}: ${e.message}`);
-      return true;
-    }
-    if (this.in.has(b.topic)) this._expectEcho(b, entry.data);
-    const ttl = entry.expires === Infinity ? '' : `,"ttl":${Math.max(1, Math.round(entry.expires - Date.now()))}`;
-    return this._sendRaw(`{"op":"publish","topic":${JSON.stringify(b.topic)},"msg":${json}${ttl}}`);
-  }
-
-  _expectEcho(b, data) {
-    const key = fingerprint(data);
-    const now = Date.now();
-    const list = b.echoes.get(key) || [];
-    list.push(now + this.limits.echoWindowMs);
-    b.echoes.set(key, list);
-  }
-
-  /** After (re)connecting: send the queue once the remote topic has a subscriber. */
-  async _flushWhenHeard(b) {
-    if (!b.queue.length || b.flushing) return;
-    b.flushing = true;
-    const deadline = Date.now() + this.limits.flushWaitMs;
-    try {
-      while (this.connected && Date.now() < deadline) {
-        let subscribers;
-        try {
-          subscribers = (await this._call('/rosapi/subscribers', { topic: b.topic }, 3000)).subscribers || [];
-        } catch {
-          break; // no rosapi: send now
-        }
-        if (subscribers.some((n) => n !== '/rosbridge_websocket')) break;
-        await new Promise((r) => setTimeout(r, 100));
-      }
-    } finally {
-      b.flushing = false;
-    }
-    this._flush(b);
-  }
-
-  _flush(b) {
-    if (b.replaced || b.lost) {
-      this.log('warning', `${b.topic}: ${b.replaced || 0} older messages were replaced (KEEP_LAST) and ${b.lost || 0} lost `
-        + `(past the bound of ${this.limits.maxQueuedBytes} bytes) while ${this.displayUrl} was unreachable`);
-      b.replaced = 0;
-      b.lost = 0;
-    }
-    while (b.queue.length && this.connected) {
-      if (this.ws.bufferedAmount >= this.limits.highWaterBytes) {
-        setTimeout(() => this._flush(b), 20);
-        return;
-      }
-      const entry = b.queue.shift();
-      this.queuedBytes -= entry.data.length;
-      this._publishOut(b, entry);
-    }
-    if (b.draining && !b.queue.length) {
-      this.draining.delete(b);
-      if (!this.out.has(b.topic)) this._send({ op: 'unadvertise', topic: b.topic });
-    }
-  }
-
-  // ----------------------------------------------------------- topics in
-
-  _startIn(topic, { type }) {
-    const b = { topic, type, publisher: null, ready: null };
-    b.ready = this.link.publisher(topic, type, IN_QOS).then((p) => {
-      if (this.in.get(topic) !== b) p.release();
-      else b.publisher = p;
-      return p;
-    });
-    b.ready.catch((e) => this.log('error', `cannot bridge ${topic} in: ${e.message}`));
-    this._subscribe(b);
-    return b;
-  }
-
-  _stopIn(b) {
-    b.ready.then((p) => p.release(), () => {});
-    this._send({ op: 'unsubscribe', topic: b.topic, id: `bridge:${b.topic}` });
-  }
-
-  _subscribe(b) {
-    // CDR bytes as they are, unless the server is serve's relay (JSON only)
-    this._send({ op: 'subscribe', id: `bridge:${b.topic}`, topic: b.topic, type: b.type, compression: this.relay ? 'none' : 'cbor-raw' });
-  }
-
-  /**
-   * The server is `colcon-wasm serve --rosbridge`'s relay (it said so): it
-   * forwards JSON, and shows the nodes each client reports in its rosapi.
-   */
-  _relayMode() {
-    if (this.relay) return;
-    this.relay = true;
-    for (const b of this.in.values()) this._subscribe(b);
-    this._reported = null;
-    this._reportGraph();
-  }
-
-  _reportGraph() {
-    if (!this.relay || !this.connected) return;
-    const nodes = this.link.rawGraph().nodes.map((n) => `${n.namespace === '/' ? '' : n.namespace}/${n.name}`)
-      .filter((fqn) => !BRIDGE_NODES.has(fqn)).sort();
-    const key = nodes.join('\n');
-    if (key === this._reported) return;
-    this._reported = key;
-    this._send({ op: 'colcon_wasm_graph', nodes });
-  }
-
-  _remotePublish(msg) {
-    const b = this.in.get(msg.topic);
-    if (!b) return;
-    if (typeof msg.ttl === 'number' && msg.ttl <= 0) {
-      this.counters.expired++;
-      return;
-    }
-    let bytes;
-    if (msg.msg && msg.msg.bytes instanceof Uint8Array) bytes = msg.msg.bytes;
-    else {
-      try {
-        bytes = this.registry.encode(b.type, this.converter.fromJson(b.type, msg.msg));
-      } catch (e) {
-        this.log('error', `a message of ${msg.topic} from ${this.displayUrl} does not fit ${b.type}: ${e.message}`);
-        return;
-      }
-    }
-    const out = this.out.get(msg.topic);
-    if (out && out.echoes.size) {
-      const key = fingerprint(bytes);
-      const list = out.echoes.get(key);
-      const now = Date.now();
-      if (list) {
-        while (list.length && list[0] < now) list.shift();
-        if (list.length) {
-          list.shift();
-          if (!list.length) out.echoes.delete(key);
-          this.counters.echoes++;
-          return;
-        }
-        out.echoes.delete(key);
-      }
-    }
-    if (b.publisher) b.publisher.publish(bytes).catch(() => {});
-    else b.ready.then((p) => p.publish(bytes)).catch(() => {});
-  }
-
-  // ----------------------------------------------------------- services
-
-  _startServed(service, { type }) {
-    const s = { service, type };
-    this._advertiseService(s);
-    return s;
-  }
-
-  _advertiseService(s) {
-    this._send({ op: 'advertise_service', service: s.service, type: s.type });
-  }
-
-  _stopServed(s) {
-    this._send({ op: 'unadvertise_service', service: s.service });
-  }
-
-  async _remoteCall(msg) {
-    const s = this.served.get(msg.service);
-    const reply = (values, result) => this._send({ op: 'service_response', id: msg.id, service: msg.service, values, result });
-    if (!s) {
-      reply(`${msg.service} is not served here`, false);
-      return;
-    }
-    try {
-      const entry = this.registry.service(s.type);
-      const request = this.registry.encode(entry.request, this.converter.fromJson(entry.request, msg.args || {}));
-      const response = await this.link.call(msg.service, s.type, request, this.limits.callTimeoutMs);
-      const json = this.converter.jsonWriter(entry.response)(this.registry.decode(entry.response, response));
-      this._sendRaw(`{"op":"service_response","id":${stringifyJson(msg.id)},"service":${JSON.stringify(msg.service)},"values":${json},"result":true}`);
-    } catch (e) {
-      reply(e.message, false);
-    }
-  }
-
-  _startProxied(service, { type }) {
-    const p = { service, type, server: null, waiting: [] };
-    const entry = this.registry.service(type);
-    p.ready = this.link.serve(service, type, (requests) => {
-      for (const r of requests) {
-        p.waiting.push({ r, at: Date.now() });
-        if (this.connected) this._sendWaitingCalls(p);
-      }
-    }, undefined);
-    p.ready.then((server) => {
-      if (this.proxied.get(service) !== p) server.close().catch(() => {});
-      else p.server = server;
-    }, (e) => this.log('error', `cannot serve ${service} for ${this.displayUrl}: ${e.message}`));
-    p.entry = entry;
-    return p;
-  }
-
-  _sendWaitingCalls(p) {
-    const waiting = p.waiting.splice(0);
-    for (const { r, at } of waiting) {
-      if (Date.now() - at > this.limits.callTimeoutMs) {
-        this.counters.lost++;
-        this.log('warning', `a call of ${p.service} waited more than ${this.limits.callTimeoutMs} ms for ${this.displayUrl} and was dropped`);
-        continue;
-      }
-      let args;
-      try {
-        args = parseJson(this.converter.jsonWriter(p.entry.request)(this.registry.decode(p.entry.request, r.data)));
-      } catch (e) {
-        this.log('error', `a call of ${p.service} could not be decoded: ${e.message}`);
-        continue;
-      }
-      this._call(p.service, args).then(async (values) => {
-        const bytes = this.registry.encode(p.entry.response, this.converter.fromJson(p.entry.response, values || {}));
-        const server = p.server || await p.ready;
-        await server.respond(r.id, bytes);
-      }, (e) => {
-        // the remote server may not be there yet: try again within the caller's time
-        if (/does not exist/.test(e.message) && Date.now() - at + 250 < this.limits.callTimeoutMs) {
-          const t = setTimeout(() => {
-            p.waiting.push({ r, at });
-            if (this.connected) this._sendWaitingCalls(p);
-          }, 250);
-          if (t.unref) t.unref();
-          return;
-        }
-        this.log('warning', `${p.service} on ${this.displayUrl} failed: ${e.message} (the local caller gets no response)`);
-      });
-    }
-  }
-
-  _stopProxied(p) {
-    p.ready.then((s) => s.close(), () => {}).catch(() => {});
   }
 
   // ----------------------------------------------------------- remote graph
@@ -696,9 +386,17 @@ export class RosbridgeClient {
     for (const b of this.out.values()) if (b.stop) b.stop();
     for (const b of this.in.values()) b.ready.then((p) => p.release(), () => {});
     for (const p of this.proxied.values()) this._stopProxied(p);
+    for (const a of this.actionsProxied.values()) a.server.close();
     if (this.ws) this.ws.close(1000, 'bridge closed');
     this.state = 'closed';
     this.onChange(this);
+  }
+}
+
+// topics (client_topics.mjs), services and actions (client_calls.mjs)
+for (const part of [ClientTopics, ClientCalls]) {
+  for (const name of Object.getOwnPropertyNames(part.prototype)) {
+    if (name !== 'constructor') RosbridgeClient.prototype[name] = part.prototype[name];
   }
 }
 
