@@ -39,8 +39,8 @@ def browser_skip_reason():
 class ServedPage:
     """`colcon-wasm serve` of an install space, for the length of a with block."""
 
-    def __init__(self, install, *, env=None):
-        """Serve `install` (its underlays come from its marker) on a free port."""
+    def __init__(self, install, *, env=None, args=()):
+        """Serve `install` (its underlays come from its marker) on a free port; `args` to serve."""
         reason = browser_skip_reason()
         if reason:
             pytest.skip(reason)
@@ -48,13 +48,17 @@ class ServedPage:
         self.env = dict(os.environ, **(env or {}))
         self.process = None
         self.url = None
+        self.args = [str(a) for a in args]
+        self.rosbridge_url = None
 
     def __enter__(self):  # noqa: D105
         self.process = subprocess.Popen(
             [str(Path(sys.executable).parent / 'colcon-wasm'), 'serve', '--install-base',
-             str(self.install), '--port', '0'],
+             str(self.install), '--port', '0', *self.args],
             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=self.env)
         for line in self.process.stdout:
+            if line.startswith('rosbridge relay: '):
+                self.rosbridge_url = line.split()[2]
             if line.startswith('Open '):
                 self.url = line.split()[1]
                 break
@@ -66,11 +70,11 @@ class ServedPage:
         self.process.terminate()
         self.process.wait(10)
 
-    def run(self, steps, timeout_ms=90000):
-        """Run page_session.mjs steps in a new page; returns its result."""
+    def run(self, steps, timeout_ms=90000, query=''):
+        """Run page_session.mjs steps in a new page (its URL + ``query``); returns its result."""
         completed = subprocess.run(
             ['node', str(JS / 'page_session.mjs'), json.dumps(
-                {'url': self.url, 'chromium': CHROMIUM, 'steps': steps,
+                {'url': self.url + query, 'chromium': CHROMIUM, 'steps': steps,
                  'timeoutMs': timeout_ms})],
             capture_output=True, text=True, timeout=timeout_ms / 1000 + 120)
         lines = completed.stdout.strip().splitlines()

@@ -56,6 +56,10 @@ NOT_RUN = {
     'source ': 'underlays: tests/test_colcon_underlay.py',
     'colcon build --wasm --wasm-underlay': 'underlays: tests/test_colcon_underlay.py',
     'colcon test --wasm --packages-select': 'Humble tests: tests/test_colcon_test.py',
+    'colcon-wasm launch my_pkg robot.launch.xml --rosbridge':
+        'rosbridge server on Humble nodes: tests/test_rosbridge_server.py',
+    'colcon-wasm launch demo_nodes/talker --rosbridge-connect':
+        'needs a rosbridge server: tests/test_rosbridge_client.py',
 }
 
 COMMAND_PREFIXES = ('colcon', 'colcon-wasm', 'blasm', 'scripts/', 'node ', 'pip ',

@@ -10,6 +10,8 @@ from colcon_wasm.launch import LaunchError
 from colcon_wasm.launch.command import execute
 from colcon_wasm.launch.command import make_plan
 from colcon_wasm.launch.install_space import InstallSpaceError
+from colcon_wasm.launch.rosbridge import add_rosbridge_arguments
+from colcon_wasm.launch.rosbridge import bridge_plan
 from colcon_wasm.launch.runner import DEFAULT_LOAD_TIMEOUT
 
 
@@ -34,6 +36,7 @@ def add_runtime_arguments(parser):
     parser.add_argument(
         '--print-plan', action='store_true',
         help='Print each process with its arguments and exit without running it')
+    add_rosbridge_arguments(parser)
 
 
 class LaunchCommand(CliExtensionPoint):
@@ -53,9 +56,11 @@ class LaunchCommand(CliExtensionPoint):
     def main(self, *, args):  # noqa: D102
         try:
             plan = make_plan(args.what, args.install_base)
+            bridges = bridge_plan(args, err=sys.stderr)
         except (LaunchError, InstallSpaceError) as e:
             print('colcon-wasm launch: {}'.format(e), file=sys.stderr)
             return 1
         return execute(plan, install_base=args.install_base, duration=args.duration,
                        echo=args.echo, print_plan=args.print_plan,
-                       command='colcon-wasm launch', load_timeout=args.load_timeout)
+                       command='colcon-wasm launch', load_timeout=args.load_timeout,
+                       bridges=bridges)

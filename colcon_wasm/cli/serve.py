@@ -5,11 +5,14 @@
 
 import ipaddress
 import sys
+import threading
 
 from colcon_wasm import resources
 from colcon_wasm.cli import CliExtensionPoint
+from colcon_wasm.launch.errors import LaunchError
 from colcon_wasm.launch.install_space import InstallSpace
 from colcon_wasm.launch.install_space import InstallSpaceError
+from colcon_wasm.launch.rosbridge import parse_listen_address
 from colcon_wasm.server import find_runtime
 from colcon_wasm.server import make_server
 from colcon_wasm.server import ServeError
@@ -37,6 +40,21 @@ class ServeCommand(CliExtensionPoint):
         parser.add_argument(
             '--port', type=int, default=8000,
             help='The port to listen on; 0 picks a free one (default: 8000)')
+        parser.add_argument(
+            '--rosbridge', nargs='?', const='127.0.0.1:9090', metavar='[HOST:]PORT',
+            help='Relay the rosbridge v2 protocol between the pages (tabs share one graph) and '
+                 'rosbridge clients (roslibjs, roslibpy) on HOST:PORT (default 127.0.0.1:9090; '
+                 'port 0 picks a free one)')
+        parser.add_argument(
+            '--rosbridge-token', metavar='TOKEN',
+            help='rosbridge clients of the --rosbridge port must present TOKEN '
+                 '(ws://HOST:PORT/?token=TOKEN)')
+        parser.add_argument(
+            '--rosbridge-max-message-bytes', type=int, default=16 << 20, metavar='N',
+            help='The largest message a rosbridge client may send (default 16 MiB)')
+        parser.add_argument(
+            '--rosbridge-max-queued-bytes', type=int, default=64 << 20, metavar='N',
+            help='Bytes waiting for one rosbridge client before it is cut off (default 64 MiB)')
 
     def main(self, *, args):  # noqa: D102
         try:
@@ -48,7 +66,8 @@ class ServeCommand(CliExtensionPoint):
                 launcher_dir=resources.path('templates') / 'launcher',
                 runtime_dir=runtime_dir, runtime_origin=runtime_origin,
                 page_modules_dir=bundled)
-        except (InstallSpaceError, ServeError) as e:
+            relay_server = _relay(args, install_space, server) if args.rosbridge else None
+        except (InstallSpaceError, ServeError, LaunchError) as e:
             print('colcon-wasm serve: {}'.format(e), file=sys.stderr)
             return 1
         if not _is_loopback(args.host):
@@ -58,11 +77,40 @@ class ServeCommand(CliExtensionPoint):
         executables = install_space.executables()
         print('Serving {} executable(s) of {}'.format(len(executables), install_space.base))
         print('Runtime: {}'.format(runtime_origin))
+        if relay_server is not None:
+            threading.Thread(target=relay_server.serve_forever, daemon=True).start()
+            print('rosbridge relay: {} (and /rosbridge for the pages)'.format(relay_server.url))
         print('Open {}  (Ctrl-C stops the server)'.format(server.url), flush=True)
         try:
             server.serve_forever()
         except KeyboardInterrupt:
             print('\nStopped.')
         finally:
+            if relay_server is not None:
+                server.relay.close()
+                relay_server.server_close()
             server.server_close()
         return 0
+
+
+def _relay(args, install_space, server):
+    """Start the rosbridge relay of the pages and of the --rosbridge port."""
+    import json
+    from colcon_wasm.server.relay import Relay
+    from colcon_wasm.server.relay_http import RelayServer
+    host, port = parse_listen_address(args.rosbridge)
+    types = []
+    for path in install_space.type_description_files():
+        try:
+            types.append(json.loads(path.read_text(encoding='utf-8')))
+        except (OSError, ValueError):
+            pass
+    relay = Relay(types=types, max_message_bytes=args.rosbridge_max_message_bytes,
+                  max_queued_bytes=args.rosbridge_max_queued_bytes)
+    relay_server = RelayServer(relay, host, port, token=args.rosbridge_token)
+    server.relay = relay
+    server.site.relay_path = '/rosbridge'
+    if not _is_loopback(host):
+        print('colcon-wasm serve: warning: the rosbridge relay listens on {}: other machines can '
+              "drive the pages' nodes".format(host), file=sys.stderr)
+    return relay_server

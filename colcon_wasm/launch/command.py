@@ -53,7 +53,7 @@ def make_plan(values, install_base):
 
 def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, command,
             out=None, err=None, stdin=False, load_timeout=DEFAULT_LOAD_TIMEOUT,
-            bases=None):
+            bases=None, bridges=None):
     """
     Resolve a plan against the install space and run it in Node.js (or print it).
 
@@ -61,6 +61,8 @@ def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, com
     ``load_timeout`` (seconds) bounds each wait of a composable node load.
     ``bases``: the install bases the processes see (default: the install space's
     base and underlays), highest priority first; see ``install_view``.
+    ``bridges``: the rosbridge server and client entries of the plan
+    (``colcon_wasm.launch.rosbridge.bridge_plan``).
 
     :returns: the exit status (1 for bad input, else the Node host's)
     """
@@ -70,6 +72,7 @@ def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, com
         install_space = InstallSpace(install_base)
         description = host_plan(plan, install_space, duration=duration, echo=echo,
                                 stdin=stdin, load_timeout=load_timeout, bases=bases)
+        description.update(bridges or {}, command=command)
     except (LaunchError, InstallSpaceError) as e:
         print('{}: {}'.format(command, e), file=err)
         return 1

@@ -52,6 +52,11 @@ class LauncherRequestHandler(BaseHTTPRequestHandler):
 
     def do_GET(self):  # noqa: N802 the name http.server calls
         """Answer a GET request."""
+        relay = getattr(self.server, 'relay', None)
+        if relay is not None and urlsplit(self.path).path == '/rosbridge':
+            from colcon_wasm.server.relay_http import upgrade  # serve --rosbridge
+            upgrade(self, relay, same_origin=True)
+            return
         self._respond(send_body=True)
 
     def do_HEAD(self):  # noqa: N802
@@ -152,6 +157,8 @@ class LauncherServer(ThreadingHTTPServer):
     daemon_threads = True
     request_queue_size = 512
     allow_reuse_address = True
+    #: the rosbridge relay of ``serve --rosbridge`` (relay.py), served at /rosbridge
+    relay = None
 
     def __init__(self, site, host, port):
         """

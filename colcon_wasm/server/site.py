@@ -9,7 +9,7 @@
 ``/launcher/<file>``       the page's modules and styles (``templates/launcher``)
 ``/wasm_js/<file>``        the JS runtime (``share/wasm_js`` of the install
                            space, else the copy inside colcon-wasm); its
-                           page-side modules ``cdr.mjs`` and ``tools/`` always
+                           page-side modules ``cdr.mjs``, ``tools/`` and ``bridges/`` always
                            come with colcon-wasm, like the page itself
 ``/workspace.json``        packages, executables and type descriptions, from
                            the manifests (read anew on each request)
@@ -39,7 +39,7 @@ PAGE_TEMPLATE = 'index.html'
 PAGE_MODULE = '/launcher/app.mjs'
 # /wasm_js/ entries that belong to the page (same version as the page), not
 # to the runtime the executables were built with
-PAGE_MODULES = ('cdr.mjs', 'tools')
+PAGE_MODULES = ('cdr.mjs', 'tools', 'bridges')
 
 # static `import ... from '<url>'` and `export ... from '<url>'` of an ES module
 _IMPORT = re.compile(r"""^\s*(?:import|export)\b[^'"]*?\bfrom\s*['"]([^'"]+)['"]"""
@@ -83,6 +83,7 @@ class Site:
         self.launcher_dir = Path(launcher_dir)
         self.runtime_dir = Path(runtime_dir)
         self.page_modules_dir = Path(page_modules_dir or runtime_dir)
+        self.relay_path = None
         self.runtime_origin = runtime_origin
         self.runtime_entry = runtime_entry
         self.title = title or 'colcon-wasm: {}'.format(install_space.base.parent.name)
@@ -138,10 +139,22 @@ class Site:
             'runtime': '/wasm_js/' + self.runtime_entry,
             'runtime_origin': self.runtime_origin,
             'warnings': warnings,
+            # serve --rosbridge: the page bridges its nodes to the relay at this path
+            'rosbridge': self.relay_path,
             # what every program started by the page sees (install_view.py)
             'mounts': self.views.mounts(),
             'environment': {AMENT_PREFIX_PATH: ':'.join(ament_prefixes(self.views.bases))},
         }
+
+    def _base_of(self, package):
+        """Return the install base (the install space's, or an underlay's) of a package."""
+        for base in [self.install_space.base, *self.views.bases]:
+            try:
+                Path(package.prefix).relative_to(base)
+                return Path(base)
+            except ValueError:
+                continue
+        return self.install_space.base
 
     def _url(self, package, path):
         return '/ws/{}/{}'.format(package.name, Path(path).relative_to(package.prefix).as_posix())
@@ -203,9 +216,9 @@ class Site:
             package = self._allowed_files().get((package_name, relative))
             if package is None:
                 raise Refused(404, 'not found: only files listed in the manifests are served')
-            return Content(path=resolve_under(self.install_space.base,
-                                              list(Path(package.prefix, relative).relative_to(
-                                                  self.install_space.base).parts)))
+            base = self._base_of(package)
+            parts = Path(package.prefix, relative).relative_to(base).parts
+            return Content(path=resolve_under(base, list(parts)))
         if head == VIEWS_PREFIX and rest:
             walk = (query or {}).get('walk')
             kind, value = self.views.content(rest[0], rest[1:], directory,

@@ -4,7 +4,8 @@
 // The launcher page: reads the workspace that `colcon-wasm serve` embedded,
 // starts the wasm_js Runtime, and wires the views. `?run=pkg/exe` (repeatable,
 // optionally followed by arguments: `?run=pkg/exe --ros-args -p rate:=5`)
-// starts executables on load.
+// starts executables on load; `?rosbridge=ws://HOST:PORT` bridges them to a
+// rosbridge server.
 
 import { h, setChildren, splitArgs } from './dom.mjs';
 import { Session } from './session.mjs';
@@ -16,6 +17,7 @@ import { TopicsView } from './views/topics.mjs';
 import { ServicesView } from './views/services.mjs';
 import { ActionsView } from './views/actions.mjs';
 import { ParametersView } from './views/parameters.mjs';
+import { bridgeControl } from './views/bridge.mjs';
 
 const workspace = JSON.parse(document.getElementById('workspace').textContent);
 const app = document.getElementById('app');
@@ -35,6 +37,7 @@ function header(session) {
     h('h1', {}, 'colcon-wasm launcher'),
     h('span.workspace', { title: workspace.install_base }, workspace.install_base),
     h('span.spacer'),
+    bridgeControl(session),
     running,
     h('span.chip', { title: `wasm_js runtime from ${workspace.runtime_origin}` }, h('span.dot'), 'wasm_js'),
     isolation);
@@ -163,6 +166,13 @@ async function main() {
   }
   if (session.typeError) {
     banners.append(h('div.banner.warn', {}, `Type descriptions: ${session.typeError}`));
+  }
+  // ?rosbridge=ws://HOST:PORT bridges the page's nodes to a rosbridge server
+  // (serve --rosbridge: the relay of serve itself, so that tabs share one graph)
+  const relay = workspace.rosbridge ? `${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}${workspace.rosbridge}` : null;
+  const rosbridge = new URLSearchParams(location.search).get('rosbridge') || relay;
+  if (rosbridge) {
+    session.connectBridge(rosbridge).catch((e) => banners.append(h('div.banner.warn', {}, `?rosbridge=${rosbridge}: ${e.message}`)));
   }
   document.body.dataset.state = 'ready';
 }

@@ -7,6 +7,7 @@
 
 import { TypeRegistry } from '/wasm_js/cdr.mjs';
 import { graphModel, subscriptionQos } from '/wasm_js/tools/graph.mjs';
+import { mergeRemote } from '/wasm_js/bridges/rosbridge/remote_graph.mjs';
 
 const SEVERITY = /^\s*\[(DEBUG|INFO|WARN|WARNING|ERROR|FATAL)\]/;
 const MAX_LOG = 5000;
@@ -30,6 +31,7 @@ export class Session {
     this.registry = new TypeRegistry();
     this.typeError = null;
     this.graph = graphModel(null);
+    this.bridge = null;
   }
 
   on(event, callback) {
@@ -81,8 +83,36 @@ export class Session {
   }
 
   refreshGraph(raw) {
-    this.graph = graphModel(raw, { toolsPid: this.tools ? this.tools.pid : undefined });
+    this.graph = mergeRemote(graphModel(raw, { toolsPid: this.tools ? this.tools.pid : undefined }), this.bridge);
     this.emit('graph', this.graph);
+  }
+
+  /**
+   * Bridge the page's nodes to a rosbridge v2 server (`?rosbridge=ws://...`,
+   * the header's connect field): bridges/rosbridge/client.mjs.
+   */
+  async connectBridge(url) {
+    await this.ready;
+    if (this.bridge) await this.disconnectBridge();
+    const { RosbridgeClient } = await import('/wasm_js/bridges/rosbridge/client.mjs');
+    this.bridge = await RosbridgeClient.start({
+      runtime: this.runtime, registry: this.registry, url, remoteGraph: true,
+      log: (level, text) => (level === 'error' ? console.error : console.log)(`[rosbridge] ${text}`),
+      onChange: () => {
+        this.emit('bridge', this.bridge);
+        this.refreshGraph(this.runtime.graph());
+      },
+    });
+    this.emit('bridge', this.bridge);
+    return this.bridge;
+  }
+
+  async disconnectBridge() {
+    const bridge = this.bridge;
+    this.bridge = null;
+    if (bridge) await bridge.close();
+    this.emit('bridge', null);
+    this.refreshGraph(this.runtime.graph());
   }
 
   runningCount() {

@@ -11,6 +11,8 @@
 //
 // steps: {start: NAME, pkg, exe, args?} | {wait: NAME, text | regex, count?}
 //        | {sleep: MS} | {stop: NAME}
+//        | {until: JS expression (true when done), timeoutMs?, save?: NAME}: waits until the
+//          expression, evaluated in the page, is truthy; with `save` its value is in `saved`
 
 import { chromium } from 'playwright-core';
 
@@ -23,6 +25,7 @@ const browser = await chromium.launch({
 });
 const pageErrors = [];
 const ids = {};
+const saved = {};
 let error = null;
 let page = null;
 
@@ -67,6 +70,17 @@ try {
         }
         await new Promise((resolve) => setTimeout(resolve, 100));
       }
+    } else if (step.until) {
+      const deadline = Date.now() + (step.timeoutMs || timeoutMs);
+      for (;;) {
+        const value = await page.evaluate((expr) => { try { return (0, eval)(expr); } catch { return null; } }, step.until);
+        if (value) {
+          if (step.save) saved[step.save] = value;
+          break;
+        }
+        if (Date.now() > deadline) throw new Error(`timed out waiting until ${step.until}`);
+        await new Promise((resolve) => setTimeout(resolve, 100));
+      }
     } else if (step.sleep) {
       await new Promise((resolve) => setTimeout(resolve, step.sleep));
     } else if (step.stop) {
@@ -85,4 +99,4 @@ try {
   error = error || String(e);
 }
 await browser.close();
-process.stdout.write(`${JSON.stringify({ ok: !error, error, ...result, pageErrors })}\n`);
+process.stdout.write(`${JSON.stringify({ ok: !error, error, ...result, saved, pageErrors })}\n`);

@@ -59,6 +59,8 @@ export const FromTools = Object.freeze({
   RETURN: 'return',
   /** {type, subscription, messages: [{data: Uint8Array, info}]} */
   BATCH: 'batch',
+  /** {type, service, requests: [{data: Uint8Array, id: {gid, seqLo, seqHi}, info}]} for serve() */
+  REQUESTS: 'requests',
 });
 
 /**

@@ -264,11 +264,12 @@ function startHostWorker() {
 export class Runtime {
   /**
    * What this runtime offers beyond the first release, for callers that may
-   * load an older one (an install space's): `mounts`, spawn()'s read-only views.
-   * @returns {{mounts: boolean}}
+   * load an older one (an install space's): `mounts`, spawn()'s read-only views;
+   * `toolsServe`, tools().serve() and subscribe({ignoreLocal}) (the rosbridge bridges).
+   * @returns {{mounts: boolean, toolsServe: boolean}}
    */
   static get features() {
-    return { mounts: true };
+    return { mounts: true, toolsServe: true };
   }
 
   /**

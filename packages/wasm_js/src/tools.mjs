@@ -63,11 +63,12 @@ export class Tools {
       this._pending.delete(m.id);
       if (m.ok) p.resolve(m.value);
       else p.reject(toError(m.error));
-    } else if (m.type === FromTools.BATCH) {
-      const cb = this._subscribers.get(m.subscription);
+    } else if (m.type === FromTools.BATCH || m.type === FromTools.REQUESTS) {
+      const batch = m.type === FromTools.BATCH;
+      const cb = this._subscribers.get(batch ? m.subscription : m.service);
       if (cb) {
         try {
-          cb(m.messages);
+          cb(batch ? m.messages : m.requests);
         } catch (e) {
           console.error('tools subscription callback threw:', e);
         }
@@ -111,13 +112,13 @@ export class Tools {
   /**
    * Subscribe to a topic; `onBatch(messages)` receives arrays of
    * {data: Uint8Array, info: {sourceTime, receivedTime, publicationSequence, publisherGid}}.
-   * @param {object} spec {topic, type, qos, node?, domain?}
+   * @param {object} spec {topic, type, qos, node?, domain?, ignoreLocal?: not the tools' own publishers}
    * @param {function(object[]): void} onBatch
    * @returns {Promise<ToolsSubscription>}
    */
   async subscribe(spec, onBatch) {
     const node = await this._node(spec);
-    const id = await this._call('subscribe', [{ node, name: spec.topic, type: spec.type, qos: spec.qos }]);
+    const id = await this._call('subscribe', [{ node, name: spec.topic, type: spec.type, qos: spec.qos, ignoreLocal: spec.ignoreLocal }]);
     this._subscribers.set(id, onBatch);
     return {
       id,
@@ -131,7 +132,8 @@ export class Tools {
   /**
    * Create a publisher.
    * @param {object} spec {topic, type, qos, node?, domain?}
-   * @returns {Promise<{id: number, publish: function(Uint8Array): Promise<number>, close: function(): Promise<void>}>}
+   * @returns {Promise<{id: number, publish: function(Uint8Array): Promise<number>,
+   *   publishMany: function(Uint8Array[]): Promise<number>, close: function(): Promise<void>}>}
    */
   async advertise(spec) {
     const node = await this._node(spec);
@@ -139,6 +141,8 @@ export class Tools {
     return {
       id,
       publish: (data) => this._call('publish', [id, data]),
+      /** Publish several messages in one call (one message to the worker); resolves to the last sequence number. */
+      publishMany: (list) => this._call('publishMany', [id, list]),
       close: () => this._call('destroy', [id]),
     };
   }
@@ -152,6 +156,27 @@ export class Tools {
   async publish(spec, data) {
     const node = await this._node(spec);
     return this._call('publishOnce', [{ node, name: spec.topic, type: spec.type, qos: spec.qos }, data]);
+  }
+
+  /**
+   * Serve a service: `onRequests(requests)` receives arrays of
+   * {data: Uint8Array, id, info}; answer each with `respond(id, bytes)`.
+   * @param {object} spec {service, type, qos, node?, domain?}
+   * @param {function(object[]): void} onRequests
+   * @returns {Promise<{id: number, respond: function(object, Uint8Array): Promise<boolean>, close: function(): Promise<void>}>}
+   */
+  async serve(spec, onRequests) {
+    const node = await this._node(spec);
+    const id = await this._call('serve', [{ node, name: spec.service, type: spec.type, qos: spec.qos }]);
+    this._subscribers.set(id, onRequests);
+    return {
+      id,
+      respond: (requestId, data, timeoutMs = 10000) => this._call('respond', [id, requestId, data, timeoutMs]),
+      close: async () => {
+        this._subscribers.delete(id);
+        await this._call('destroy', [id]);
+      },
+    };
   }
 
   /**

@@ -9,17 +9,34 @@
  * @module tools_worker
  */
 
-import { BusClient, KIND_CLIENT, KIND_PUBLISHER, KIND_SUBSCRIPTION, TakeMode } from './bus_client.mjs';
+import { BusClient, KIND_CLIENT, KIND_PUBLISHER, KIND_SERVICE, KIND_SUBSCRIPTION, TakeMode } from './bus_client.mjs';
 import { FromTools, ToTools } from './protocol.mjs';
 
 let client = null;
 const subscriptions = new Set();
+/** service server endpoints (rosbridge's advertise_service) */
+const servers = new Set();
 const publishers = new Map();
 /** service name key -> client endpoint */
 const clientByKey = new Map();
 /** client endpoint -> Map(sequence number -> pending call) */
 const clients = new Map();
 let armed = false;
+let drainQueued = false;
+
+/**
+ * Drain once the current call is done: a subscription of this process to a
+ * topic it publishes on gets the message now, not at the next wake-up (a
+ * burst of publishes would otherwise overrun a KEEP_LAST reader's history).
+ */
+function drainSoon() {
+  if (drainQueued) return;
+  drainQueued = true;
+  queueMicrotask(() => {
+    drainQueued = false;
+    drain();
+  });
+}
 
 const post = (m, transfer) => (typeof self !== 'undefined' && self.postMessage
   ? self.postMessage(m, transfer || [])
@@ -50,6 +67,17 @@ function drain() {
       transfer.push(data.buffer);
     }
     if (messages.length) post({ type: FromTools.BATCH, subscription: ep, messages }, transfer);
+  }
+  for (const ep of servers) {
+    const requests = [];
+    const transfer = [];
+    let data;
+    while ((data = client.take(ep, TakeMode.REQUEST))) {
+      const i = client.info;
+      requests.push({ data, id: { gid: Array.from(i.gid), seqLo: i.reqLo, seqHi: i.reqHi }, info: infoOf(client) });
+      transfer.push(data.buffer);
+    }
+    if (requests.length) post({ type: FromTools.REQUESTS, service: ep, requests }, transfer);
   }
   for (const [ep, pending] of clients) {
     let data;
@@ -88,7 +116,9 @@ function arm() {
 }
 
 function endpoint(spec, kind) {
-  return client.createEndpoint({ kind, node: spec.node, name: spec.name, type: spec.type, qos: spec.qos || {} }).index;
+  return client.createEndpoint({
+    kind, node: spec.node, name: spec.name, type: spec.type, qos: spec.qos || {}, ignoreLocal: !!spec.ignoreLocal,
+  }).index;
 }
 
 const methods = {
@@ -110,7 +140,15 @@ const methods = {
     return endpoint(spec, KIND_PUBLISHER);
   },
   publish(ep, data) {
-    return client.publish(ep, data, 10000);
+    const seq = client.publish(ep, data, 10000);
+    if (subscriptions.size) drainSoon();
+    return seq;
+  },
+  publishMany(ep, list) {
+    let seq = 0;
+    for (const data of list) seq = client.publish(ep, data, 10000);
+    if (subscriptions.size) drainSoon();
+    return seq;
   },
   publishOnce(spec, data) {
     const key = JSON.stringify([spec.node, spec.name, spec.type, spec.qos || {}]);
@@ -119,7 +157,9 @@ const methods = {
       ep = endpoint(spec, KIND_PUBLISHER);
       publishers.set(key, ep);
     }
-    return client.publish(ep, data, 10000);
+    const seq = client.publish(ep, data, 10000);
+    if (subscriptions.size) drainSoon();
+    return seq;
   },
   call(spec, request, timeoutMs) {
     const key = JSON.stringify([spec.node, spec.name, spec.type, spec.qos || {}]);
@@ -140,8 +180,18 @@ const methods = {
       drain();
     });
   },
+  serve(spec) {
+    const ep = endpoint(spec, KIND_SERVICE);
+    servers.add(ep);
+    Promise.resolve().then(drain);
+    return ep;
+  },
+  respond(ep, id, data, timeoutMs) {
+    return client.sendResponse(ep, id.gid, id.seqLo, id.seqHi, data, timeoutMs);
+  },
   destroy(ep) {
     subscriptions.delete(ep);
+    servers.delete(ep);
     client.destroyEndpoint(ep);
   },
 };

@@ -31,7 +31,7 @@ export class ServicesView {
     const services = model.services.filter((s) => this.showHidden.checked || !s.hidden);
     setChildren(this.table, services.length ? services.map((s) => h(`tr.clickable${this.selected === s.name ? '.selected' : ''}`, {
       dataset: { service: s.name }, onclick: () => this.select(s),
-    }, h('td.name', {}, s.name), h('td.type', {}, s.types.join(', ')), h('td.num', {}, String(s.servers)),
+    }, h('td.name', {}, s.name, s.remote || s.remoteToo ? h('span.type', { title: 'on the rosbridge server' }, ' remote') : null), h('td.type', {}, s.types.join(', ')), h('td.num', {}, String(s.servers)),
     h('td.num', {}, String(s.clients)))) : h('tr', {}, h('td.empty', { colSpan: 4 }, 'No services yet.')));
     if (!this.selected) setChildren(this.detail, h('div.card.note', {}, 'Select a service to call it.'));
   }

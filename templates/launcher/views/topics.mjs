@@ -44,7 +44,7 @@ export class TopicsView {
     } else {
       setChildren(this.table, topics.map((t) => h(`tr.clickable${this.selected === t.name ? '.selected' : ''}`, {
         dataset: { topic: t.name }, onclick: () => this.select(t.name),
-      }, h('td.name', {}, t.name), h('td.type', {}, t.types.join(', ')),
+      }, h('td.name', {}, t.name, t.remote || t.remoteToo ? h('span.type', { title: 'on the rosbridge server' }, ' remote') : null), h('td.type', {}, t.types.join(', ')),
       h('td.num', {}, String(t.publishers)), h('td.num', {}, String(t.subscribers)))));
     }
     if (this.inspector) this.inspector.update(model.topics.find((t) => t.name === this.selected));

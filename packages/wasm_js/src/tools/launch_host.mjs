@@ -13,7 +13,9 @@
  * space's, which matches the executables). All processes share one bus (one Runtime). Output is
  * prefixed `[label]` and process events are reported as `ros2 launch` does.
  * Composable nodes (`plan.loads`) are loaded into their containers once the
- * processes have started (./composable.mjs).
+ * processes have started (./composable.mjs). `plan.rosbridge` and
+ * `plan.rosbridge_connect` start the rosbridge server and client first
+ * (../bridges/rosbridge/launch.mjs).
  * The exit status is 1 when a process crashed or exited with a non-zero
  * code, or a composable node failed to load, 0 otherwise.
  */
@@ -84,6 +86,18 @@ async function main() {
   }
   const runtime = await Runtime.create({});
   const registry = loadRegistry(plan.types || []);
+  // the rosbridge server / client (--rosbridge, --rosbridge-connect), before any process
+  let bridges = null;
+  if (plan.rosbridge || plan.rosbridge_connect) {
+    const { startBridges } = await import('../bridges/rosbridge/launch.mjs');
+    try {
+      bridges = await startBridges(plan, runtime, registry, { out, err });
+    } catch (e) {
+      err(`${plan.command || 'colcon-wasm launch'}: ${e.name === 'RosbridgeError' ? e.message : e.stack}`);
+      await runtime.close();
+      return 1;
+    }
+  }
   const handles = new Map();
   const states = new Map();
   let failed = false;
@@ -165,6 +179,12 @@ async function main() {
     stopping = true;
     out(`[INFO] [launch]: ${why}`);
     loader.shutdown();
+    // bridged peers see the end first, so they keep what they send (rosbridge client queues),
+    // and the nodes get a moment to take what the bridges delivered last
+    if (bridges) {
+      await bridges.close();
+      await new Promise((resolve) => setTimeout(resolve, 250));
+    }
     await Promise.all([...handles.entries()].map(async ([label, handle]) => {
       if (states.get(label) !== 'running') return;
       await handle.stop();
@@ -187,6 +207,7 @@ async function main() {
   process.on('SIGTERM', () => stopAll('terminated (SIGTERM)'));
   checkDone();
   await done;
+  if (bridges) await bridges.close(); // closing twice is harmless
   if (runtime.close) await runtime.close();
   return failed ? 1 : 0;
 }

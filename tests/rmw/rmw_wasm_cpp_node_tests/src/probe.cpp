@@ -84,6 +84,20 @@ int listener(const std::vector<std::string> &)
   return 0;
 }
 
+// Like listener, with a RELIABLE KEEP_ALL subscription: nothing is dropped for a burst
+// (the rosbridge reconnection test of tests/test_rosbridge_client.py).
+int keep_all_listener(const std::vector<std::string> &)
+{
+  auto node = std::make_shared<rclcpp::Node>("keep_all_listener");
+  auto subscription = node->create_subscription<std_msgs::msg::String>(
+    "chatter", rclcpp::QoS(rclcpp::KeepAll()).reliable(),
+    [&](const std_msgs::msg::String & message) {
+      RCLCPP_INFO(node->get_logger(), "HEARD %s", message.data.c_str());
+    });
+  rclcpp::spin(node);
+  return 0;
+}
+
 // Like listener, spun by a MultiThreadedExecutor with 4 threads (for the idle CPU check).
 int mt_listener(const std::vector<std::string> &)
 {
@@ -602,6 +616,7 @@ int main(int argc, char ** argv)
     std::function<int(const std::vector<std::string> &)> run;
   } scenarios[] = {
     {"param_talker", param_talker}, {"listener", listener}, {"mt_listener", mt_listener},
+    {"keep_all_listener", keep_all_listener},
     {"param_reader", param_reader},
     {"wrong_type", wrong_type}, {"no_server", no_server}, {"invalid_topic", invalid_topic},
     {"oversize", oversize}, {"clock", clock_publisher}, {"sim_time", sim_time},

@@ -1,0 +1,231 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""WebSocket connections (RFC 6455), server side, for ``colcon-wasm serve``'s relay.
+
+Standard library only, one thread reading each connection (the server's
+handler thread) and one writing it, so that a peer that stops reading never
+blocks whoever sends to it: what waits for it is counted, and past
+``max_queued_bytes`` the peer is cut off. Text and binary messages,
+fragmentation, ping/pong and close; no extensions. A message larger than
+``max_message_bytes`` is skipped and reported to ``on_oversize``; the
+connection stays up.
+"""
+
+import base64
+import hashlib
+import queue
+import struct
+import threading
+
+GUID = '258EAFA5-E914-47DA-95CA-C5AB0DC85B11'
+TEXT, BINARY, CLOSE, PING, PONG = 0x1, 0x2, 0x8, 0x9, 0xA
+
+
+class WebSocketError(Exception):
+    """The peer broke the protocol; ``code`` is the close code to send."""
+
+    def __init__(self, code, message):  # noqa: D107
+        super().__init__(message)
+        self.code = code
+
+
+def accept_key(key):
+    """Return the Sec-WebSocket-Accept value of a Sec-WebSocket-Key."""
+    digest = hashlib.sha1((key + GUID).encode('ascii')).digest()
+    return base64.b64encode(digest).decode('ascii')
+
+
+def handshake_response(headers):
+    """
+    Return the 101 response to an upgrade request, or None if it is not one.
+
+    :param headers: a mapping of the request's headers (case-insensitive get)
+    """
+    key = headers.get('Sec-WebSocket-Key')
+    if 'websocket' not in (headers.get('Upgrade') or '').lower() or not key:
+        return None
+    return ('HTTP/1.1 101 Switching Protocols\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n'
+            'Sec-WebSocket-Accept: {}\r\n\r\n'.format(accept_key(key.strip()))).encode('ascii')
+
+
+def encode_frame(opcode, payload):
+    """Return an unmasked frame (server to client)."""
+    n = len(payload)
+    if n < 126:
+        header = struct.pack('!BB', 0x80 | opcode, n)
+    elif n < 65536:
+        header = struct.pack('!BBH', 0x80 | opcode, 126, n)
+    else:
+        header = struct.pack('!BBQ', 0x80 | opcode, 127, n)
+    return header + payload
+
+
+class Connection:
+    """One WebSocket peer: ``run(on_message)`` reads, ``send()`` queues."""
+
+    def __init__(self, sock, *, max_message_bytes, max_queued_bytes, on_oversize=None,
+                 on_cut_off=None):
+        """Wrap a socket whose handshake is done."""
+        self.sock = sock
+        self.max_message_bytes = max_message_bytes
+        self.max_queued_bytes = max_queued_bytes
+        self.on_oversize = on_oversize
+        self.on_cut_off = on_cut_off
+        self.queued_bytes = 0
+        self.closed = False
+        self._lock = threading.Lock()
+        self._queue = queue.Queue()
+        self._writer = threading.Thread(target=self._write_loop, daemon=True)
+        self._writer.start()
+
+    def _recv_exact(self, n):
+        chunks = []
+        while n:
+            chunk = self.sock.recv(min(n, 1 << 20))
+            if not chunk:
+                raise ConnectionError('the peer closed the connection')
+            chunks.append(chunk)
+            n -= len(chunk)
+        return b''.join(chunks)
+
+    def _skip(self, n):
+        while n:
+            chunk = self.sock.recv(min(n, 1 << 20))
+            if not chunk:
+                raise ConnectionError('the peer closed the connection')
+            n -= len(chunk)
+
+    def _frame(self):
+        b0, b1 = self._recv_exact(2)
+        opcode, fin, masked, n = b0 & 0x0F, bool(b0 & 0x80), bool(b1 & 0x80), b1 & 0x7F
+        if b0 & 0x70:
+            raise WebSocketError(1002, 'RSV bits set, but no extension was negotiated')
+        if not masked:
+            raise WebSocketError(1002, 'a client frame is not masked (RFC 6455 5.1)')
+        if n == 126:
+            n, = struct.unpack('!H', self._recv_exact(2))
+        elif n == 127:
+            n, = struct.unpack('!Q', self._recv_exact(8))
+        key = self._recv_exact(4)
+        return opcode, fin, n, key
+
+    def run(self, on_message):
+        """Read messages until the peer closes; ``on_message(data, binary)`` for each."""
+        parts, parts_opcode, parts_bytes, skipping = None, 0, 0, False
+        try:
+            while not self.closed:
+                opcode, fin, n, key = self._frame()
+                if opcode >= 0x8:
+                    payload = _unmask(self._recv_exact(n), key)
+                    if opcode == PING:
+                        self._enqueue(encode_frame(PONG, payload))
+                    elif opcode == CLOSE:
+                        self.close(struct.unpack('!H', payload[:2])[0] if len(payload) >= 2
+                                   else 1000)
+                        break
+                    continue
+                if skipping or n > self.max_message_bytes or \
+                        parts_bytes + n > self.max_message_bytes:
+                    self._skip(n)
+                    if not skipping and self.on_oversize:
+                        self.on_oversize(parts_bytes + n)
+                    skipping = not fin
+                    parts, parts_bytes = None, 0
+                    continue
+                payload = _unmask(self._recv_exact(n), key)
+                if opcode == 0:
+                    if parts is None:
+                        raise WebSocketError(1002, 'a continuation frame without a message')
+                    parts.append(payload)
+                    parts_bytes += n
+                else:
+                    parts, parts_opcode, parts_bytes = [payload], opcode, n
+                if fin:
+                    data = b''.join(parts)
+                    parts, parts_bytes = None, 0
+                    if parts_opcode == TEXT:
+                        try:
+                            text = data.decode('utf-8')
+                        except UnicodeDecodeError:
+                            raise WebSocketError(1007, 'a text message is not UTF-8') from None
+                        on_message(text, False)
+                    else:
+                        on_message(data, True)
+        except WebSocketError as e:
+            self.close(e.code, str(e))
+        except (ConnectionError, OSError):
+            pass
+        finally:
+            self.close()
+
+    def send(self, data):
+        """Queue a text (str) or binary (bytes) message; False once closed or cut off."""
+        if isinstance(data, str):
+            frame = encode_frame(TEXT, data.encode('utf-8'))
+        else:
+            frame = encode_frame(BINARY, bytes(data))
+        return self._enqueue(frame)
+
+    def _enqueue(self, frame):
+        with self._lock:
+            if self.closed:
+                return False
+            if self.queued_bytes + len(frame) > self.max_queued_bytes:
+                cut = True
+            else:
+                cut = False
+                self.queued_bytes += len(frame)
+                self._queue.put(frame)
+        if cut:
+            if self.on_cut_off:
+                self.on_cut_off(self.queued_bytes)
+            self.close(1008, 'the client did not read', now=True)
+            return False
+        return True
+
+    def _write_loop(self):
+        while True:
+            frame = self._queue.get()
+            if frame is None:
+                break
+            try:
+                self.sock.sendall(frame)
+            except OSError:
+                break
+            with self._lock:
+                self.queued_bytes -= len(frame)
+        self.closed = True
+        try:
+            self.sock.shutdown(2)
+        except OSError:
+            pass
+
+    def close(self, code=None, reason='', now=False):
+        """
+        End the connection: what is queued is sent first, then a close frame (with a code).
+
+        With ``now`` (a peer that does not read) the socket is shut at once.
+        """
+        with self._lock:
+            if self.closed:
+                return
+            self.closed = True
+            if code is not None and not now:
+                payload = struct.pack('!H', code) + reason.encode('utf-8')[:120]
+                self._queue.put(encode_frame(CLOSE, payload))
+            self._queue.put(None)
+        if now:
+            try:
+                self.sock.shutdown(2)
+            except OSError:
+                pass
+
+
+def _unmask(payload, key):
+    if not payload:
+        return payload
+    n = len(payload)
+    mask = (key * (n // 4 + 1))[:n]
+    return (int.from_bytes(payload, 'little') ^ int.from_bytes(mask, 'little')).to_bytes(
+        n, 'little')
