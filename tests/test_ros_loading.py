@@ -134,6 +134,15 @@ def test_pluginlib_loads_plugins_of_a_run_dependency_in_node(build):
     assert unknown.returncode != 0
 
 
+def test_pluginlib_loads_a_plugin_of_its_own_package_in_node(build):
+    # the package's plugin description is installed after its executables
+    # are first linked: the build links them again once it is in the index
+    greeted = _colcon_wasm(build, 'run', 'pluginlib_greeters', 'greet_own',
+                           'pluginlib_greeters/Shout', 'me')
+    assert 'OWN GREETING HELLO, ME!' in greeted.stdout, greeted.stdout + greeted.stderr
+    assert greeted.returncode == 0
+
+
 def test_loading_a_library_that_is_not_linked_says_so(build):
     done = _colcon_wasm(build, 'run', 'pluginlib_user', 'greet', '--library', '/x/libfoo.a')
     assert "LOAD FAILED Could not load library library '/x/libfoo.a' is not linked into this " \

@@ -118,6 +118,12 @@ class WasmBuildTask(TaskExtensionPoint):
         rc = await stock.build()
         if rc:
             return rc
+        if self._relink_stale_executables(args, plan):
+            # the package's own plugins or components only reach the ament
+            # index with its install: link what loads them once more
+            rc = await stock.build()
+            if rc:
+                return rc
 
         self.progress('wasm')
         try:
@@ -273,9 +279,12 @@ class WasmBuildTask(TaskExtensionPoint):
         The plugins and components the link launcher adds are not CMake's
         inputs (colcon_wasm/link/report.py): removing the output is how CMake
         learns that the executable must be linked again.
+
+        :returns: True when an executable is to be linked again
         """
         bases = [self._install_base(args)] + [str(u) for u in plan.underlays]
-        for output, reason in stale_links(args.build_base, bases):
+        stale = stale_links(args.build_base, bases)
+        for output, reason in stale:
             logger.info(
                 f"Linking '{Path(output).name}' of '{self.context.pkg.name}' again: "
                 f'{reason}')
@@ -283,6 +292,7 @@ class WasmBuildTask(TaskExtensionPoint):
             for path in (output, stem + '.wasm', stem + '.worker.js'):
                 if Path(path).exists():
                     Path(path).unlink()
+        return bool(stale)
 
     def _install_base(self, args):
         """Get the install base shared by all packages."""
