@@ -21,16 +21,23 @@ The JSON format (``schema`` 1)::
                      "default": "abc"},
                     {"name": "stamp", "type": "builtin_interfaces/msg/Time"},
                     {"name": "rgb", "type": "uint8", "array_size": 3}],
-         "constants": [{"name": "MAX", "type": "int32", "value": 7}]}},
+         "constants": [{"name": "MAX", "type": "int32", "value": 7}],
+         "definition": "int64 num\\n..."}},
      "services": {"demo_interfaces/srv/AddTwoInts": {
          "request": "demo_interfaces/srv/AddTwoInts_Request",
-         "response": "demo_interfaces/srv/AddTwoInts_Response"}},
+         "response": "demo_interfaces/srv/AddTwoInts_Response",
+         "definition": "int64 a\\nint64 b\\n---\\nint64 sum\\n"}},
      "actions": {"pkg/action/Fib": {
          "goal": "pkg/action/Fib_Goal", "result": "pkg/action/Fib_Result",
          "feedback": "pkg/action/Fib_Feedback",
          "send_goal": {"request": "...", "response": "..."},
          "get_result": {"request": "...", "response": "..."},
          "feedback_message": "pkg/action/Fib_FeedbackMessage"}}}
+
+Each message keeps its ``definition``: the text of its ``.msg`` file (or of
+its part of the ``.srv``/``.action``), comments included, from which
+:mod:`colcon_wasm.ros2msg` assembles the schemas rosbag2 and Foxglove use;
+services and actions keep the text of their whole file.
 
 Service requests and responses and the messages an action implies (the
 ``_SendGoal``/``_GetResult`` services and the ``_FeedbackMessage``, as
@@ -417,7 +424,13 @@ def _split_sections(text, count, source, kind):
 def describe_message(package, name, text, *, source=None):
     """Describe a ``.msg`` file: ``{'<pkg>/msg/<name>': description}``."""
     return {_full_name(package, 'msg', name):
-            parse_message(package, name, text, source=source)}
+            _with_definition(parse_message(package, name, text, source=source), text)}
+
+
+def _with_definition(description, text):
+    """Keep the definition's text (comments and all) beside its description."""
+    description['definition'] = text
+    return description
 
 
 def describe_service(package, name, text, *, source=None):
@@ -433,9 +446,10 @@ def describe_service(package, name, text, *, source=None):
     full = _full_name(package, 'srv', name)
     for suffix, part, line in (('_Request', request, request_line),
                                ('_Response', response, response_line)):
-        messages[full + suffix] = parse_message(
-            package, name + suffix, part, source=source, first_line=line)
-    services = {full: {'request': full + '_Request', 'response': full + '_Response'}}
+        messages[full + suffix] = _with_definition(parse_message(
+            package, name + suffix, part, source=source, first_line=line), part)
+    services = {full: {'request': full + '_Request', 'response': full + '_Response',
+                       'definition': text}}
     return messages, services
 
 
@@ -449,8 +463,8 @@ def describe_action(package, name, text, *, source=None):
     full = _full_name(package, 'action', name)
     messages = {}
     for suffix, (part, line) in zip(('_Goal', '_Result', '_Feedback'), sections):
-        messages[full + suffix] = parse_message(
-            package, name + suffix, part, source=source, first_line=line)
+        messages[full + suffix] = _with_definition(parse_message(
+            package, name + suffix, part, source=source, first_line=line), part)
     uuid = {'name': 'goal_id', 'type': 'unique_identifier_msgs/msg/UUID'}
     messages[full + '_SendGoal_Request'] = {
         'fields': [uuid, {'name': 'goal', 'type': full + '_Goal'}], 'constants': []}
@@ -466,7 +480,20 @@ def describe_action(package, name, text, *, source=None):
     messages[full + '_FeedbackMessage'] = {
         'fields': [uuid, {'name': 'feedback', 'type': full + '_Feedback'}],
         'constants': []}
+    # the messages rosidl derives get the text of their fields (rosidl writes
+    # no file for them)
+    uuid_line = 'unique_identifier_msgs/UUID goal_id\n'
+    derived = {
+        '_SendGoal_Request': uuid_line + f'{package}/{name}_Goal goal\n',
+        '_SendGoal_Response': 'bool accepted\nbuiltin_interfaces/Time stamp\n',
+        '_GetResult_Request': uuid_line,
+        '_GetResult_Response': f'int8 status\n{package}/{name}_Result result\n',
+        '_FeedbackMessage': uuid_line + f'{package}/{name}_Feedback feedback\n',
+    }
+    for suffix, definition in derived.items():
+        _with_definition(messages[full + suffix], definition)
     actions = {full: {
+        'definition': text,
         'goal': full + '_Goal',
         'result': full + '_Result',
         'feedback': full + '_Feedback',

@@ -151,7 +151,10 @@ def test_service_sections_and_line_numbers():
         'pkg', 'AddTwoInts', 'int64 a\nint64 b\n---\nint64 sum\n')
     assert services == {'pkg/srv/AddTwoInts': {
         'request': 'pkg/srv/AddTwoInts_Request',
-        'response': 'pkg/srv/AddTwoInts_Response'}}
+        'response': 'pkg/srv/AddTwoInts_Response',
+        'definition': 'int64 a\nint64 b\n---\nint64 sum\n'}}
+    assert messages['pkg/srv/AddTwoInts_Request']['definition'] == 'int64 a\nint64 b'
+    assert messages['pkg/srv/AddTwoInts_Response']['definition'] == 'int64 sum'
     assert [f['name'] for f in messages['pkg/srv/AddTwoInts_Request']['fields']] == ['a', 'b']
     assert [f['name'] for f in messages['pkg/srv/AddTwoInts_Response']['fields']] == ['sum']
 
@@ -186,6 +189,13 @@ def test_action_and_the_messages_rosidl_derives():
         {'name': 'status', 'type': 'int8'}, {'name': 'result', 'type': full + '_Result'}]
     assert messages[full + '_FeedbackMessage']['fields'][1] == {
         'name': 'feedback', 'type': full + '_Feedback'}
+    assert actions[full]['definition'].startswith('int32 order\n---\n')
+    # the derived messages' texts name their fields in order
+    for name, message in messages.items():
+        lines = [line.split() for line in message['definition'].splitlines()]
+        assert [n for _, n in lines] == [f['name'] for f in message['fields']], name
+    assert messages[full + '_FeedbackMessage']['definition'] == \
+        'unique_identifier_msgs/UUID goal_id\npkg/Fib_Feedback feedback\n'
     with pytest.raises(TypeDescriptionError, match="exactly 2 '---'"):
         typedesc.describe_action('pkg', 'Fib', 'int32 a\n---\n', source='Fib.action')
 

@@ -238,6 +238,15 @@ class InstallSpace:
         """Return the types.json files of all packages."""
         return [p.types_path for p in self.packages().values() if p.types_path.is_file()]
 
+    def ros2msg_schemas(self):
+        """
+        Get the complete definitions (rosbag2's ros2msg) of the install's types.
+
+        :rtype: colcon_wasm.ros2msg.Ros2MsgSchemas
+        """
+        from colcon_wasm.ros2msg import Ros2MsgSchemas
+        return Ros2MsgSchemas.from_files(self.type_description_files())
+
     def find_package_prefix(self, name):
         """Return the install prefix of a package (for find-pkg-share)."""
         return self.package(name).prefix
