@@ -1,7 +1,7 @@
 # Copyright 2026 colcon-wasm contributors
 # Licensed under the Apache License, Version 2.0
 
-"""Type descriptions: ROS interface definitions as JSON, for CDR in JS.
+r"""Type descriptions: ROS interface definitions as JSON, for CDR in JS.
 
 An interface package installs its definitions as ``share/<pkg>/msg/*.msg``,
 ``share/<pkg>/srv/*.srv`` and ``share/<pkg>/action/*.action``.  This module
@@ -22,11 +22,11 @@ The JSON format (``schema`` 1)::
                     {"name": "stamp", "type": "builtin_interfaces/msg/Time"},
                     {"name": "rgb", "type": "uint8", "array_size": 3}],
          "constants": [{"name": "MAX", "type": "int32", "value": 7}],
-         "definition": "int64 num\\n..."}},
+         "definition": "int64 num\n..."}},
      "services": {"demo_interfaces/srv/AddTwoInts": {
          "request": "demo_interfaces/srv/AddTwoInts_Request",
          "response": "demo_interfaces/srv/AddTwoInts_Response",
-         "definition": "int64 a\\nint64 b\\n---\\nint64 sum\\n"}},
+         "definition": "int64 a\nint64 b\n---\nint64 sum\n"}},
      "actions": {"pkg/action/Fib": {
          "goal": "pkg/action/Fib_Goal", "result": "pkg/action/Fib_Result",
          "feedback": "pkg/action/Fib_Feedback",

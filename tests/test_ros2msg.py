@@ -3,14 +3,13 @@
 
 """Complete definitions in rosbag2's ros2msg form, read by a third-party decoder."""
 
-from mcap_ros2._dynamic import generate_dynamic
-from mcap_ros2._dynamic import serialize_dynamic
-import pytest
-
 from colcon_wasm import typedesc
 from colcon_wasm.ros2msg import DELIMITER
 from colcon_wasm.ros2msg import Ros2MsgSchemas
 from colcon_wasm.ros2msg import SchemaError
+from mcap_ros2._dynamic import generate_dynamic
+from mcap_ros2._dynamic import serialize_dynamic
+import pytest
 
 TIME = 'int32 sec\nuint32 nanosec\n'
 HEADER = '# Standard metadata\nbuiltin_interfaces/Time stamp\nstring frame_id\n'
