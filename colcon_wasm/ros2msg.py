@@ -85,6 +85,10 @@ class Ros2MsgSchemas:
                     'package with `colcon build --wasm`') from e
         return cls.from_documents(documents)
 
+    def names(self):
+        """List the full names of the message types described."""
+        return list(self._messages)
+
     def resolve(self, name):
         """
         Find the full name of a type named ``pkg/Type`` or ``pkg/msg/Type``.

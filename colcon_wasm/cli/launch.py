@@ -9,6 +9,8 @@ from colcon_wasm.cli import CliExtensionPoint
 from colcon_wasm.launch import LaunchError
 from colcon_wasm.launch.command import execute
 from colcon_wasm.launch.command import make_plan
+from colcon_wasm.launch.foxglove import add_foxglove_arguments
+from colcon_wasm.launch.foxglove import foxglove_plan
 from colcon_wasm.launch.install_space import InstallSpaceError
 from colcon_wasm.launch.rosbridge import add_rosbridge_arguments
 from colcon_wasm.launch.rosbridge import bridge_plan
@@ -37,6 +39,7 @@ def add_runtime_arguments(parser):
         '--print-plan', action='store_true',
         help='Print each process with its arguments and exit without running it')
     add_rosbridge_arguments(parser)
+    add_foxglove_arguments(parser)
 
 
 class LaunchCommand(CliExtensionPoint):
@@ -57,6 +60,7 @@ class LaunchCommand(CliExtensionPoint):
         try:
             plan = make_plan(args.what, args.install_base)
             bridges = bridge_plan(args, err=sys.stderr)
+            bridges.update(foxglove_plan(args, err=sys.stderr))
         except (LaunchError, InstallSpaceError) as e:
             print('colcon-wasm launch: {}'.format(e), file=sys.stderr)
             return 1

@@ -12,6 +12,7 @@ from colcon_wasm.launch import LaunchError
 from colcon_wasm.launch import LaunchPlan
 from colcon_wasm.launch import NodeProcess
 from colcon_wasm.launch.command import execute
+from colcon_wasm.launch.foxglove import foxglove_plan
 from colcon_wasm.launch.rosbridge import bridge_plan
 
 
@@ -32,6 +33,7 @@ class RunCommand(CliExtensionPoint):
         plan = LaunchPlan([NodeProcess(args.package, args.executable, arguments=args.arguments)])
         try:
             bridges = bridge_plan(args, err=sys.stderr)
+            bridges.update(foxglove_plan(args, err=sys.stderr))
         except LaunchError as e:
             print('colcon-wasm run: {}'.format(e), file=sys.stderr)
             return 1

@@ -10,6 +10,7 @@ from colcon_wasm.launch import LaunchError
 from colcon_wasm.launch import load_launch_file
 from colcon_wasm.launch import plan_items
 from colcon_wasm.launch import split_launch_arguments
+from colcon_wasm.launch.foxglove import schema_file
 from colcon_wasm.launch.install_space import InstallSpace
 from colcon_wasm.launch.install_space import InstallSpaceError
 from colcon_wasm.launch.runner import DEFAULT_LOAD_TIMEOUT
@@ -62,7 +63,8 @@ def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, com
     ``bases``: the install bases the processes see (default: the install space's
     base and underlays), highest priority first; see ``install_view``.
     ``bridges``: the rosbridge server and client entries of the plan
-    (``colcon_wasm.launch.rosbridge.bridge_plan``).
+    (``colcon_wasm.launch.rosbridge.bridge_plan``) and the Foxglove server's
+    (``colcon_wasm.launch.foxglove.foxglove_plan``).
 
     :returns: the exit status (1 for bad input, else the Node host's)
     """
@@ -92,7 +94,8 @@ def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, com
     try:
         bundled = resources.path('packages') / 'wasm_js' / 'src'
         runtime_dir, _ = find_runtime(install_space, bundled)
-        return run_host(description, runtime_dir / runtime_entry(runtime_dir), bundled)
+        with schema_file(description, install_space):
+            return run_host(description, runtime_dir / runtime_entry(runtime_dir), bundled)
     except (LaunchError, ServeError) as e:
         print('{}: {}'.format(command, e), file=err)
         return 1

@@ -60,22 +60,22 @@ def add_rosbridge_arguments(parser):
              'subscribe, serve and call crosses (reconnects with backoff)')
 
 
-def parse_listen_address(text):
+def parse_listen_address(text, option='--rosbridge', default_port=DEFAULT_PORT):
     """
-    Read ``[HOST:]PORT``.
+    Read ``[HOST:]PORT`` (the value of ``option``, named in the errors).
 
     :returns: ``(host, port)``
     :raises LaunchError: for anything else
     """
     match = re.fullmatch(r'(?:\[([^\]]+)\]|([^:\[\]]*)):(\d+)|(\d+)', text.strip())
     if not match:
-        raise LaunchError("--rosbridge '{}' is not [HOST:]PORT (e.g. 9090, 127.0.0.1:9090, "
-                          '0.0.0.0:9090); to take the default, put --rosbridge last among the '
-                          'options or write --rosbridge=127.0.0.1:9090'.format(text))
+        raise LaunchError("{0} '{1}' is not [HOST:]PORT (e.g. {2}, 127.0.0.1:{2}, "
+                          '0.0.0.0:{2}); to take the default, put {0} last among the '
+                          'options or write {0}=127.0.0.1:{2}'.format(option, text, default_port))
     host = match.group(1) or match.group(2) or DEFAULT_HOST
     port = int(match.group(3) or match.group(4))
     if port > 65535:
-        raise LaunchError('--rosbridge port {} is not a port (0 to 65535)'.format(port))
+        raise LaunchError('{} port {} is not a port (0 to 65535)'.format(option, port))
     return host, port
 
 

@@ -14,8 +14,8 @@
  * prefixed `[label]` and process events are reported as `ros2 launch` does.
  * Composable nodes (`plan.loads`) are loaded into their containers once the
  * processes have started (./composable.mjs). `plan.rosbridge` and
- * `plan.rosbridge_connect` start the rosbridge server and client first
- * (../bridges/rosbridge/launch.mjs).
+ * `plan.rosbridge_connect` start the rosbridge server and client first, `plan.foxglove`
+ * the Foxglove server (../bridges/rosbridge/launch.mjs).
  * The exit status is 1 when a process crashed or exited with a non-zero
  * code, or a composable node failed to load, 0 otherwise.
  */
@@ -88,12 +88,12 @@ async function main() {
   const registry = loadRegistry(plan.types || []);
   // the rosbridge server / client (--rosbridge, --rosbridge-connect), before any process
   let bridges = null;
-  if (plan.rosbridge || plan.rosbridge_connect) {
+  if (plan.rosbridge || plan.rosbridge_connect || plan.foxglove) {
     const { startBridges } = await import('../bridges/rosbridge/launch.mjs');
     try {
       bridges = await startBridges(plan, runtime, registry, { out, err });
     } catch (e) {
-      err(`${plan.command || 'colcon-wasm launch'}: ${e.name === 'RosbridgeError' ? e.message : e.stack}`);
+      err(`${plan.command || 'colcon-wasm launch'}: ${['RosbridgeError', 'FoxgloveError'].includes(e.name) ? e.message : e.stack}`);
       await runtime.close();
       return 1;
     }

@@ -6,7 +6,8 @@
  * rosbridge server (`plan.rosbridge`: {host, port, token, capabilities,
  * limits}) and the client to a remote rosbridge server
  * (`plan.rosbridge_connect`: {url, token, allow, deny, limits}), started on
- * the launch's Runtime before its processes.
+ * the launch's Runtime before its processes; and the Foxglove server
+ * (`plan.foxglove`, ../foxglove/launch.mjs).
  *
  * @module bridges/rosbridge/launch
  */
@@ -46,6 +47,10 @@ export async function startBridges(plan, runtime, registry, { out, err }) {
       limits: spec.limits || {}, WebSocket: NodeWebSocket, log,
     });
     closers.push(() => client.close());
+  }
+  if (plan.foxglove) {
+    const { startFoxglove } = await import('../foxglove/launch.mjs');
+    closers.push(await startFoxglove(plan.foxglove, runtime, registry, { out, err }));
   }
   return {
     close: async () => {

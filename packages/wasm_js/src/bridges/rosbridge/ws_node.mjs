@@ -198,27 +198,44 @@ function toArrayBuffer(bytes) {
  * @param {import('node:net').Socket} socket
  * @param {Buffer} head
  * @param {object} [options] {maxMessageBytes, onOversize}
+ * @param {string[]} [options.protocols] subprotocols this server speaks, preferred first: the
+ *   first the client offers is selected (`connection.protocol`); a client that offers none of
+ *   them is refused (HTTP 400, `options.refusal` as the body)
+ * @param {string} [options.what] what this server is, for a request that is no WebSocket upgrade
  * @returns {WebSocketConnection|null} null when the request was refused
  */
 export function acceptWebSocket(request, socket, head, options = {}) {
   const key = request.headers['sec-websocket-key'];
   const upgrade = String(request.headers.upgrade || '').toLowerCase();
+  const what = options.what || 'a rosbridge WebSocket server';
   if (request.method !== 'GET' || upgrade !== 'websocket' || !key) {
-    refuse(socket, 400, 'Bad Request', 'this is a rosbridge WebSocket server: connect with a WebSocket client (ws://)');
+    refuse(socket, 400, 'Bad Request', `this is ${what}: connect with a WebSocket client (ws://)`);
     return null;
   }
   if (String(request.headers['sec-websocket-version']) !== '13') {
     socket.end('HTTP/1.1 426 Upgrade Required\r\nSec-WebSocket-Version: 13\r\nConnection: close\r\n\r\n');
     return null;
   }
+  let protocol = '';
+  if (options.protocols) {
+    const offered = String(request.headers['sec-websocket-protocol'] || '').split(',').map((p) => p.trim());
+    protocol = options.protocols.find((p) => offered.includes(p)) || '';
+    if (!protocol) {
+      refuse(socket, 400, 'Bad Request', options.refusal || `this is ${what}: offer one of the subprotocols ${options.protocols.join(', ')}`);
+      return null;
+    }
+  }
   const lines = [
     'HTTP/1.1 101 Switching Protocols', 'Upgrade: websocket', 'Connection: Upgrade',
     `Sec-WebSocket-Accept: ${acceptKey(key)}`,
   ];
+  if (protocol) lines.push(`Sec-WebSocket-Protocol: ${protocol}`);
   socket.write(`${lines.join('\r\n')}\r\n\r\n`);
-  return new WebSocketConnection(socket, {
+  const connection = new WebSocketConnection(socket, {
     client: false, maxMessageBytes: options.maxMessageBytes, head, onOversize: options.onOversize,
   });
+  connection.protocol = protocol;
+  return connection;
 }
 
 /** Answer an upgrade request with an HTTP error and close the socket. */
