@@ -33,8 +33,8 @@ URL = re.compile(r'rosbridge server listening on (ws://\S+)')
 class BackgroundLaunch:
     """A `colcon-wasm launch` process and its output, read by a thread."""
 
-    def __init__(self, install, *args, duration=300, wait_url=True):
-        """Start it; with ``wait_url`` wait for the rosbridge server's URL."""
+    def __init__(self, install, *args, duration=300, wait_url=True, url_pattern=URL):
+        """Start it; with ``wait_url`` wait for the server's URL (``url_pattern``'s group 1)."""
         self.lines = []
         self._lock = threading.Lock()
         command = [str(demo_build.venv_tool('colcon-wasm')), 'launch', '--install-base',
@@ -47,7 +47,7 @@ class BackgroundLaunch:
         self._reader.start()
         self.url = None
         if wait_url:
-            match = self.wait_for(URL, timeout=90)
+            match = self.wait_for(url_pattern, timeout=90)
             self.url = match.group(1)
 
     def _read(self):

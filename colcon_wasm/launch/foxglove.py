@@ -17,6 +17,7 @@ import json
 import os
 import tempfile
 
+from colcon_wasm.launch.rosbridge import _positive_int
 from colcon_wasm.launch.rosbridge import DEFAULT_HOST
 from colcon_wasm.launch.rosbridge import is_loopback
 from colcon_wasm.launch.rosbridge import parse_listen_address
@@ -24,13 +25,6 @@ from colcon_wasm.ros2msg import SchemaError
 
 DEFAULT_PORT = 8765
 DEFAULT_QUEUE_MESSAGES = 10
-
-
-def _positive_int(text):
-    value = int(text)
-    if value <= 0:
-        raise ValueError(text)
-    return value
 
 
 def add_foxglove_arguments(parser):

@@ -18,6 +18,7 @@ import http from 'node:http';
 
 import { BusLink } from '../rosbridge/bus_link.mjs';
 import { Converter } from '../rosbridge/convert.mjs';
+import { closeAll, listen } from '../common/listen.mjs';
 import { acceptWebSocket } from '../rosbridge/ws_node.mjs';
 import { Catalog, connectionGraph, connectionGraphUpdate, loadSchemas } from './catalog.mjs';
 import { Parameters } from './parameters.mjs';
@@ -83,26 +84,8 @@ export class FoxgloveServer {
     this.link = await BusLink.create({ runtime: this.runtime, tools, nodeName: 'foxglove_bridge' });
     this.parameters = new Parameters(this.link, this.registry);
     this.runtime.onGraphChange(() => this._graphChanged());
-    await new Promise((resolve, reject) => {
-      const onError = (e) => {
-        const where = `${this.host}:${this.port}`;
-        if (e.code === 'EADDRINUSE') {
-          reject(new FoxgloveError(`port ${this.port} on ${this.host} is already in use (another Foxglove server or foxglove_bridge?): `
-            + 'stop it, or pass --foxglove HOST:PORT (port 0 picks a free port)'));
-        } else if (e.code === 'EACCES') {
-          reject(new FoxgloveError(`no permission to listen on port ${this.port} of ${this.host}: use a port above 1023, e.g. --foxglove 8765`));
-        } else if (e.code === 'EADDRNOTAVAIL' || e.code === 'ENOTFOUND') {
-          reject(new FoxgloveError(`cannot listen on ${where}: ${this.host} is not an address of this machine`));
-        } else {
-          reject(new FoxgloveError(`cannot listen on ${where}: ${e.message}`));
-        }
-      };
-      this.http.once('error', onError);
-      this.http.listen(this.port, this.host, () => {
-        this.http.off('error', onError);
-        this.port = this.http.address().port;
-        resolve();
-      });
+    this.port = await listen(this.http, {
+      host: this.host, port: this.port, option: '--foxglove', other: 'another Foxglove server or foxglove_bridge', ErrorClass: FoxgloveError,
     });
     this._refresh();
   }
@@ -225,18 +208,7 @@ export class FoxgloveServer {
 
   /** Stop listening and close every client (the closing handshake, at most `graceMs`). */
   async close(graceMs = 1000) {
-    const closing = new Promise((resolve) => this.http.close(() => resolve()));
-    await Promise.all([...this.sessions].map(async (s) => {
-      const ended = new Promise((resolve) => {
-        const previous = s.conn.onclose;
-        s.conn.onclose = (e) => { if (previous) previous(e); resolve(); };
-      });
-      s.conn.close(1001, 'the server is stopping');
-      await Promise.race([ended, new Promise((r) => setTimeout(r, graceMs))]);
-      s.end();
-      s.conn.terminate();
-    }));
+    await closeAll(this.http, this.sessions, graceMs);
     for (const w of [this._clock, this._paramWatch]) if (w) w.then((stop) => stop(), () => {});
-    await closing;
   }
 }

@@ -21,6 +21,7 @@
 import { timingSafeEqual } from 'node:crypto';
 import http from 'node:http';
 
+import { closeAll, listen } from '../common/listen.mjs';
 import { installActions } from './actions.mjs';
 import { BusLink } from './bus_link.mjs';
 import { Capabilities } from './capabilities.mjs';
@@ -116,26 +117,8 @@ export class RosbridgeServer {
     // the bus side first: a client that connects at once finds it ready
     const tools = await this.runtime.tools();
     this.core.link = await BusLink.create({ runtime: this.runtime, tools, nodeName: 'rosbridge_websocket' });
-    await new Promise((resolve, reject) => {
-      const onError = (e) => {
-        const where = `${this.host}:${this.port}`;
-        if (e.code === 'EADDRINUSE') {
-          reject(new RosbridgeError(`port ${this.port} on ${this.host} is already in use (another rosbridge server, `
-            + 'or another server?): stop it, or pass --rosbridge HOST:PORT (port 0 picks a free port)'));
-        } else if (e.code === 'EACCES') {
-          reject(new RosbridgeError(`no permission to listen on port ${this.port} of ${this.host}: use a port above 1023, e.g. --rosbridge 9090`));
-        } else if (e.code === 'EADDRNOTAVAIL' || e.code === 'ENOTFOUND') {
-          reject(new RosbridgeError(`cannot listen on ${where}: ${this.host} is not an address of this machine`));
-        } else {
-          reject(new RosbridgeError(`cannot listen on ${where}: ${e.message}`));
-        }
-      };
-      this.http.once('error', onError);
-      this.http.listen(this.port, this.host, () => {
-        this.http.off('error', onError);
-        this.port = this.http.address().port;
-        resolve();
-      });
+    this.port = await listen(this.http, {
+      host: this.host, port: this.port, option: '--rosbridge', other: 'another rosbridge server', ErrorClass: RosbridgeError,
     });
   }
 
@@ -190,18 +173,7 @@ export class RosbridgeServer {
    * most `graceMs`, then the sockets.
    */
   async close(graceMs = 1500) {
-    const closing = new Promise((resolve) => this.http.close(() => resolve()));
-    await Promise.all([...this.sessions].map(async (s) => {
-      const ended = new Promise((resolve) => {
-        const previous = s.conn.onclose;
-        s.conn.onclose = (e) => { if (previous) previous(e); resolve(); };
-      });
-      s.conn.close(1001, 'the server is stopping');
-      await Promise.race([ended, new Promise((r) => setTimeout(r, graceMs))]);
-      s.end();
-      s.conn.terminate();
-    }));
-    await closing;
+    await closeAll(this.http, this.sessions, graceMs);
   }
 }
 

@@ -1,0 +1,165 @@
+// Copyright 2026 colcon-wasm contributors
+// Licensed under the Apache License, Version 2.0
+
+/**
+ * Third-party Foxglove clients against `colcon-wasm launch --foxglove`
+ * (tests/test_foxglove_*.py): npm `@foxglove/ws-protocol`'s FoxgloveClient
+ * over npm `ws`, decoding and encoding with `@foxglove/rosmsg` and
+ * `@foxglove/rosmsg2-serialization` from the schemas the server advertises.
+ *
+ *   node foxglove_client.mjs demo URL      # the demo talker, listener, add_two_ints_server
+ *   node foxglove_client.mjs params URL NODE PARAM VALUE
+ *   node foxglove_client.mjs refused URL   # no subprotocol offered
+ *
+ * Prints one JSON line {ok, ...}; every wait is bounded.
+ */
+
+import rosmsg from '@foxglove/rosmsg';
+import serialization from '@foxglove/rosmsg2-serialization';
+import wsProtocol from '@foxglove/ws-protocol';
+import WebSocket from 'ws';
+
+// CommonJS packages: their exports through the default import
+const { FoxgloveClient } = wsProtocol;
+const { parse } = rosmsg;
+const { MessageReader, MessageWriter } = serialization;
+
+const [mode, url, ...rest] = process.argv.slice(2);
+const done = (result) => {
+  console.log(JSON.stringify(result, (k, v) => (typeof v === 'bigint' ? Number(v) : v)));
+  process.exit(result.ok ? 0 : 1);
+};
+setTimeout(() => done({ ok: false, error: `timed out in mode ${mode}` }), 60000).unref();
+
+function connect(protocol = FoxgloveClient.SUPPORTED_SUBPROTOCOL) {
+  const ws = new WebSocket(url, [protocol]);
+  const client = new FoxgloveClient({ ws });
+  const state = { ws, client, channels: new Map(), services: new Map(), status: [], info: null };
+  client.on('serverInfo', (m) => { state.info = m; });
+  client.on('advertise', (channels) => { for (const c of channels) state.channels.set(c.topic, c); });
+  client.on('advertiseServices', (services) => { for (const s of services) state.services.set(s.name, s); });
+  client.on('status', (m) => state.status.push(m));
+  client.on('error', (e) => state.status.push({ error: String(e && e.message) }));
+  return state;
+}
+
+const until = async (what, test, ms = 20000) => {
+  const end = Date.now() + ms;
+  while (Date.now() < end) {
+    const v = test();
+    if (v) return v;
+    await new Promise((r) => setTimeout(r, 20));
+  }
+  throw new Error(`waited ${ms} ms for ${what}`);
+};
+
+const reply = (client, event, match, send, what) => new Promise((resolve, reject) => {
+  const timer = setTimeout(() => reject(new Error(`no ${event} for ${what}`)), 10000);
+  const on = (m) => {
+    if (!match(m)) return;
+    clearTimeout(timer);
+    client.off(event, on);
+    resolve(m);
+  };
+  client.on(event, on);
+  send();
+});
+
+async function callService(state, name, request, encoding, callId) {
+  const service = await until(`service ${name}`, () => state.services.get(name));
+  let data;
+  if (encoding === 'cdr') data = new MessageWriter(parse(service.request.schema, { ros2: true })).writeMessage(request);
+  else data = new TextEncoder().encode(JSON.stringify(request));
+  const r = await reply(state.client, 'serviceCallResponse', (m) => m.callId === callId,
+    () => state.client.sendServiceCallRequest({ serviceId: service.id, callId, encoding, data }), name);
+  if (r.encoding === 'cdr') return new MessageReader(parse(service.response.schema, { ros2: true })).readMessage(r.data);
+  return JSON.parse(new TextDecoder().decode(r.data));
+}
+
+async function demo() {
+  const state = connect();
+  const { client } = state;
+  const chatter = await until('the /chatter channel', () => state.channels.get('/chatter'));
+  const reader = new MessageReader(parse(chatter.schema, { ros2: true }));
+  const heard = [];
+  const timestamps = [];
+  client.on('message', (m) => {
+    heard.push(reader.readMessage(new Uint8Array(m.data.buffer, m.data.byteOffset, m.data.byteLength)));
+    timestamps.push(m.timestamp);
+  });
+  client.subscribe(chatter.id);
+  await until('3 messages on /chatter', () => heard.length >= 3);
+
+  // bad input: the connection stays up
+  state.ws.send('{"op": "subscribe", bad json');
+  state.ws.send(JSON.stringify({ op: 'noSuchOp' }));
+  state.ws.send(new Uint8Array([0x7f, 1, 2]));
+  await until('three status messages', () => state.status.length >= 3);
+
+  // publish to the C++ listener, in cdr and in json
+  const writer = new MessageWriter(parse(chatter.schema, { ros2: true }));
+  const cdrId = client.advertise({ topic: '/chatter', encoding: 'cdr', schemaName: 'demo_interfaces/msg/Chatter' });
+  const jsonId = client.advertise({ topic: '/chatter', encoding: 'json', schemaName: 'demo_interfaces/msg/Chatter' });
+  await new Promise((r) => setTimeout(r, 500));
+  for (let i = 0; i < 5; i++) {
+    client.sendMessage(cdrId, writer.writeMessage({ data: `from foxglove cdr ${i}`, count: 1000 + i }));
+    client.sendMessage(jsonId, new TextEncoder().encode(JSON.stringify({ data: `from foxglove json ${i}`, count: 2000 + i })));
+    await new Promise((r) => setTimeout(r, 100));
+  }
+
+  const sumCdr = await callService(state, '/add_two_ints', { a: 40n, b: 2n }, 'cdr', 7);
+  const sumJson = await callService(state, '/add_two_ints', { a: 5, b: 6 }, 'json', 8);
+  const missing = await reply(client, 'serviceCallFailure', (m) => m.callId === 9,
+    () => client.sendServiceCallRequest({ serviceId: 9999, callId: 9, encoding: 'cdr', data: new Uint8Array(0) }), 'a missing service');
+
+  const graph = await reply(client, 'connectionGraphUpdate', () => true, () => client.subscribeConnectionGraph(), 'the graph');
+
+  // the other subprotocol
+  const sdk = connect('foxglove.sdk.v1');
+  await until('serverInfo over foxglove.sdk.v1', () => sdk.info && sdk.channels.get('/chatter'));
+  sdk.ws.close();
+  done({
+    ok: true, info: state.info, channel: { ...chatter, schema: chatter.schema }, heard, timestamps: timestamps.slice(0, 3),
+    status: state.status, sumCdr, sumJson, missing, graph, sdkProtocol: sdk.ws.protocol, protocol: state.ws.protocol,
+    services: [...state.services.keys()],
+  });
+}
+
+async function params() {
+  const [node, param, value] = rest;
+  const state = connect();
+  const { client } = state;
+  await until('serverInfo', () => state.info);
+  const name = `${node}.${param}`;
+  const all = await reply(client, 'parameterValues', (m) => m.id === 'all', () => client.getParameters([], 'all'), 'all parameters');
+  const before = await reply(client, 'parameterValues', (m) => m.id === 'get', () => client.getParameters([name], 'get'), name);
+  const updates = [];
+  client.on('parameterValues', (m) => { if (m.id === undefined) updates.push(...m.parameters); });
+  client.subscribeParameterUpdates([name]);
+  await new Promise((r) => setTimeout(r, 500));
+  const parsed = JSON.parse(value);
+  const after = await reply(client, 'parameterValues', (m) => m.id === 'set',
+    () => client.setParameters([{ name, value: parsed }], 'set'), `set ${name}`);
+  await until('a parameter update', () => updates.length > 0, 10000).catch(() => null);
+  done({
+    ok: true, info: state.info, all: all.parameters.map((p) => p.name), before: before.parameters, after: after.parameters,
+    updates, status: state.status,
+  });
+}
+
+async function refused() {
+  const ws = new WebSocket(url);
+  const r = await new Promise((resolve) => {
+    ws.on('unexpected-response', (req, res) => {
+      let body = '';
+      res.on('data', (c) => { body += c; });
+      res.on('end', () => resolve({ status: res.statusCode, body }));
+    });
+    ws.on('open', () => resolve({ status: 101 }));
+    ws.on('error', () => {});
+  });
+  done({ ok: true, ...r });
+}
+
+({ demo, params, refused }[mode] || (() => done({ ok: false, error: `unknown mode ${mode}` })))()
+  .catch((e) => done({ ok: false, error: e.stack }));
