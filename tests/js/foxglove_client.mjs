@@ -130,6 +130,13 @@ async function params() {
   const state = connect();
   const { client } = state;
   await until('serverInfo', () => state.info);
+  // /parameter_events (nested types: Time, Parameter, ParameterValue), decoded from its schema
+  const eventsChannel = await until('the /parameter_events channel', () => state.channels.get('/parameter_events'));
+  const eventReader = new MessageReader(parse(eventsChannel.schema, { ros2: true }));
+  const events = [];
+  client.on('message', (m) => events.push(eventReader.readMessage(new Uint8Array(m.data.buffer, m.data.byteOffset, m.data.byteLength))));
+  client.subscribe(eventsChannel.id);
+  await new Promise((r) => setTimeout(r, 300));
   const name = `${node}.${param}`;
   const all = await reply(client, 'parameterValues', (m) => m.id === 'all', () => client.getParameters([], 'all'), 'all parameters');
   const before = await reply(client, 'parameterValues', (m) => m.id === 'get', () => client.getParameters([name], 'get'), name);
@@ -141,7 +148,10 @@ async function params() {
   const after = await reply(client, 'parameterValues', (m) => m.id === 'set',
     () => client.setParameters([{ name, value: parsed }], 'set'), `set ${name}`);
   await until('a parameter update', () => updates.length > 0, 10000).catch(() => null);
+  await until('a parameter event', () => events.length > 0, 10000).catch(() => null);
   done({
+    events: events.map((e) => ({ node: e.node, stamp: e.stamp, changed: e.changed_parameters })),
+    eventsSchema: eventsChannel.schema,
     ok: true, info: state.info, all: all.parameters.map((p) => p.name), before: before.parameters, after: after.parameters,
     updates, status: state.status,
   });

@@ -1,0 +1,60 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""
+The Foxglove server's parameters and ROS 2 schemas, with rclcpp nodes.
+
+npm `@foxglove/ws-protocol`'s FoxgloveClient (tests/js/foxglove_client.mjs)
+gets, sets and watches the parameters of rmw_wasm_cpp_node_tests' probe
+(an rclcpp node of the Humble build, tests/rclcpp_build.py) through its rcl
+parameter services and /parameter_events. On 127.0.0.1, every wait bounded.
+"""
+
+from pathlib import Path
+import re
+import sys
+import textwrap
+
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from rclcpp_build import rclcpp_build  # noqa: E402, I100
+from rosbridge_launch import BackgroundLaunch  # noqa: E402
+from rosbridge_launch import node_script  # noqa: E402
+
+URL = re.compile(r'foxglove server listening on (ws://\S+)')
+
+
+@pytest.fixture(scope='module')
+def server(tmp_path_factory):
+    """The probe's param_talker (an rclcpp node) with a Foxglove server."""
+    install = rclcpp_build().install
+    path = tmp_path_factory.mktemp('foxglove_rclcpp') / 'params.launch.yaml'
+    path.write_text(textwrap.dedent("""
+        launch:
+        - node: {pkg: rmw_wasm_cpp_node_tests, exec: probe, args: param_talker, name: talker}
+    """).lstrip(), encoding='utf-8')
+    with BackgroundLaunch(install, '--foxglove', '127.0.0.1:0', path, duration=120,
+                          url_pattern=URL) as run:
+        run.wait_for('NAME /talker TOPIC /chatter', timeout=90)
+        yield run
+
+
+def test_foxglove_gets_sets_and_watches_an_rclcpp_parameter(server):
+    """getParameters (one, all), setParameters with an id, and the update it causes."""
+    r = node_script('foxglove_client.mjs', 'params', server.url, '/talker', 'greeting',
+                    '"hi from foxglove"')
+    assert {'parameters', 'parametersSubscribe'} <= set(r['info']['capabilities'])
+    assert '/talker.greeting' in r['all'] and '/talker.period_ms' in r['all'], r['all']
+    assert r['before'] == [{'name': '/talker.greeting', 'value': 'hello'}]
+    assert r['after'] == [{'name': '/talker.greeting', 'value': 'hi from foxglove'}]
+    assert {'name': '/talker.greeting', 'value': 'hi from foxglove'} in r['updates'], r
+    assert not [s for s in r['status'] if s.get('level', 0) >= 1], r['status']
+    # Foxglove's decoder read /parameter_events from the advertised rosbag2-style schema
+    assert '\nMSG: builtin_interfaces/Time\n' in r['eventsSchema']
+    assert '\nMSG: rcl_interfaces/ParameterValue\n' in r['eventsSchema']
+    event = next(e for e in r['events'] if e['changed'])
+    assert event['node'] == '/talker' and event['stamp']['sec'] > 0
+    assert event['changed'][0]['name'] == 'greeting'
+    assert event['changed'][0]['value']['string_value'] == 'hi from foxglove'
