@@ -136,3 +136,17 @@ def test_foxglove_bad_address(install):
         capture_output=True, text=True, timeout=60)
     assert result.returncode == 1
     assert "--foxglove 'nowhere' is not [HOST:]PORT" in result.stderr
+
+
+def test_foxglove_big_topic_drops_and_does_not_starve_a_small_one(server):
+    """A client that stops reading: the flooding topic's queue drops (counted), /chatter's not."""
+    r = node_script('foxglove_client.mjs', 'slow', server.url)
+    assert 0 < r['big'] < r['sent'], r
+    chatter = r['chatter']
+    assert len(chatter) >= 10, r
+    assert chatter == list(range(chatter[0], chatter[0] + len(chatter))), chatter
+    drops = [s for s in r['status'] if s.get('id') == 'dropped:/fox/big']
+    assert drops and drops[0]['level'] == 1, r['status']
+    assert not [s for s in r['status'] if s.get('id') == 'dropped:/chatter'], r['status']
+    match = server.wait_for(re.compile(r'dropped for it: (\d+) of /fox/big'), timeout=10)
+    assert 0 < int(match.group(1)) <= r['sent'] - r['big']

@@ -10,6 +10,7 @@
  *   node foxglove_client.mjs demo URL      # the demo talker, listener, add_two_ints_server
  *   node foxglove_client.mjs params URL NODE PARAM VALUE
  *   node foxglove_client.mjs refused URL   # no subprotocol offered
+ *   node foxglove_client.mjs slow URL      # a client that stops reading while a big topic floods
  *
  * Prints one JSON line {ok, ...}; every wait is bounded.
  */
@@ -171,5 +172,48 @@ async function refused() {
   done({ ok: true, ...r });
 }
 
-({ demo, params, refused }[mode] || (() => done({ ok: false, error: `unknown mode ${mode}` })))()
+/**
+ * A FoxgloveClient floods /fox/big (512 KiB messages) while a raw `ws`
+ * client subscribed to it and to the 10 Hz /chatter stops reading for a
+ * while: the big topic's queue drops, /chatter's does not.
+ */
+async function slow() {
+  const pub = connect();
+  const chatterChannel = await until('/chatter', () => pub.channels.get('/chatter'));
+  const bigId = pub.client.advertise({ topic: '/fox/big', encoding: 'cdr', schemaName: 'demo_interfaces/msg/Frame' });
+  const big = await until('/fox/big', () => pub.channels.get('/fox/big'));
+  const frameWriter = new MessageWriter(parse(big.schema, { ros2: true }));
+  const frame = frameWriter.writeMessage({ height: 512, width: 341, encoding: 'rgb8', is_bigendian: 0, step: 1023, data: new Uint8Array(512 * 1023) });
+
+  const ws = new WebSocket(url, [FoxgloveClient.SUPPORTED_SUBPROTOCOL]);
+  const got = [];
+  const status = [];
+  ws.on('message', (data, binary) => {
+    if (!binary) {
+      const m = JSON.parse(String(data));
+      if (m.op === 'status') status.push(m);
+      return;
+    }
+    const view = new DataView(data.buffer, data.byteOffset, data.byteLength);
+    got.push({ sub: view.getUint32(1, true), data: new Uint8Array(data.buffer, data.byteOffset + 13, data.byteLength - 13) });
+  });
+  await new Promise((r) => ws.on('open', r));
+  ws.send(JSON.stringify({ op: 'subscribe', subscriptions: [{ id: 1, channelId: big.id }, { id: 2, channelId: chatterChannel.id }] }));
+  await new Promise((r) => setTimeout(r, 300));
+  ws._socket.pause();
+  const SENT = 80;
+  for (let i = 0; i < SENT; i++) {
+    pub.client.sendMessage(bigId, frame);
+    if (i % 10 === 9) await new Promise((r) => setTimeout(r, 5));
+  }
+  await new Promise((r) => setTimeout(r, 700));
+  ws._socket.resume();
+  await new Promise((r) => setTimeout(r, 1500));
+  const reader = new MessageReader(parse(chatterChannel.schema, { ros2: true }));
+  const chatter = got.filter((m) => m.sub === 2).map((m) => reader.readMessage(m.data).count);
+  ws.close();
+  done({ ok: true, sent: SENT, big: got.filter((m) => m.sub === 1).length, chatter, status });
+}
+
+({ demo, params, refused, slow }[mode] || (() => done({ ok: false, error: `unknown mode ${mode}` })))()
   .catch((e) => done({ ok: false, error: e.stack }));
