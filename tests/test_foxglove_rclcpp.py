@@ -58,3 +58,12 @@ def test_foxglove_gets_sets_and_watches_an_rclcpp_parameter(server):
     assert event['node'] == '/talker' and event['stamp']['sec'] > 0
     assert event['changed'][0]['name'] == 'greeting'
     assert event['changed'][0]['value']['string_value'] == 'hi from foxglove'
+
+
+def test_foxglove_time_from_clock(server):
+    """Once /clock is published, clients get the time capability and its TIME messages."""
+    r = node_script('foxglove_client.mjs', 'clock', server.url)
+    assert 'time' in r['after'], r
+    times = [int(t) for t in r['times']]
+    assert all(t % 1000000000 == 500 and t // 1000000000 > 1000 for t in times), times
+    assert times == sorted(times)

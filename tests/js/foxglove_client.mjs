@@ -10,6 +10,7 @@
  *   node foxglove_client.mjs demo URL      # the demo talker, listener, add_two_ints_server
  *   node foxglove_client.mjs params URL NODE PARAM VALUE
  *   node foxglove_client.mjs refused URL   # no subprotocol offered
+ *   node foxglove_client.mjs clock URL     # publishes /clock; a second client gets the time
  *   node foxglove_client.mjs slow URL      # a client that stops reading while a big topic floods
  *
  * Prints one JSON line {ok, ...}; every wait is bounded.
@@ -215,5 +216,25 @@ async function slow() {
   done({ ok: true, sent: SENT, big: got.filter((m) => m.sub === 1).length, chatter, status });
 }
 
-({ demo, params, refused, slow }[mode] || (() => done({ ok: false, error: `unknown mode ${mode}` })))()
+/** Publish rosgraph_msgs/Clock on /clock (json); a client connecting then gets 'time' and TIME messages. */
+async function clock() {
+  const pub = connect();
+  await until('serverInfo', () => pub.info);
+  const id = pub.client.advertise({ topic: '/clock', encoding: 'json', schemaName: 'rosgraph_msgs/msg/Clock' });
+  let sec = 1000;
+  const timer = setInterval(() => {
+    sec++;
+    pub.client.sendMessage(id, new TextEncoder().encode(JSON.stringify({ clock: { sec, nanosec: 500 } })));
+  }, 50);
+  await until('the /clock channel', () => pub.channels.get('/clock'));
+  await new Promise((r) => setTimeout(r, 300));
+  const late = connect();
+  const times = [];
+  late.client.on('time', (m) => times.push(m.timestamp));
+  await until('time messages', () => times.length >= 3);
+  clearInterval(timer);
+  done({ ok: true, before: pub.info.capabilities, after: late.info.capabilities, times: times.slice(0, 3).map(String) });
+}
+
+({ demo, params, refused, slow, clock }[mode] || (() => done({ ok: false, error: `unknown mode ${mode}` })))()
   .catch((e) => done({ ok: false, error: e.stack }));
