@@ -144,7 +144,7 @@ def test_foxglove_big_topic_drops_and_does_not_starve_a_small_one(server):
     assert 0 < r['big'] < r['sent'], r
     chatter = r['chatter']
     assert len(chatter) >= 10, r
-    assert chatter == list(range(chatter[0], chatter[0] + len(chatter))), chatter
+    assert chatter == list(range(chatter[0], chatter[0] + len(chatter))), r
     drops = [s for s in r['status'] if s.get('id') == 'dropped:/fox/big']
     assert drops and drops[0]['level'] == 1, r['status']
     assert not [s for s in r['status'] if s.get('id') == 'dropped:/chatter'], r['status']

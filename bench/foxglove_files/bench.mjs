@@ -26,6 +26,7 @@ const modules = new URL('../../tests/js/node_modules/', import.meta.url);
 const { WebSocket, WebSocketServer } = await import(new URL('ws/wrapper.mjs', modules).href);
 const { default: wsProtocol } = await import(new URL('@foxglove/ws-protocol/dist/cjs/src/index.js', modules).href);
 const { default: rosmsg } = await import(new URL('@foxglove/rosmsg/dist/index.js', modules).href);
+const { until } = await import(new URL('../until.mjs', modules).href);
 const { default: serialization } = await import(new URL('@foxglove/rosmsg2-serialization/dist/index.js', modules).href);
 
 import { spawn } from 'node:child_process';
@@ -82,16 +83,6 @@ function connect() {
   client.on('advertise', (list) => { for (const c of list) channels.set(c.topic, c); });
   return { ws, client, channels };
 }
-
-const until = async (what, test, ms = 30000) => {
-  const end = Date.now() + ms;
-  while (Date.now() < end) {
-    const v = test();
-    if (v) return v;
-    await new Promise((r) => setTimeout(r, 20));
-  }
-  throw new Error(`waited ${ms} ms for ${what}`);
-};
 
 async function foxglove() {
   const { client, channels } = connect();

@@ -21,6 +21,8 @@ import serialization from '@foxglove/rosmsg2-serialization';
 import wsProtocol from '@foxglove/ws-protocol';
 import WebSocket from 'ws';
 
+import { until } from './until.mjs';
+
 // CommonJS packages: their exports through the default import
 const { FoxgloveClient } = wsProtocol;
 const { parse } = rosmsg;
@@ -44,16 +46,6 @@ function connect(protocol = FoxgloveClient.SUPPORTED_SUBPROTOCOL) {
   client.on('error', (e) => state.status.push({ error: String(e && e.message) }));
   return state;
 }
-
-const until = async (what, test, ms = 20000) => {
-  const end = Date.now() + ms;
-  while (Date.now() < end) {
-    const v = test();
-    if (v) return v;
-    await new Promise((r) => setTimeout(r, 20));
-  }
-  throw new Error(`waited ${ms} ms for ${what}`);
-};
 
 const reply = (client, event, match, send, what) => new Promise((resolve, reject) => {
   const timer = setTimeout(() => reject(new Error(`no ${event} for ${what}`)), 10000);
@@ -174,7 +166,7 @@ async function refused() {
 }
 
 /**
- * A FoxgloveClient floods /fox/big (512 KiB messages) while a raw `ws`
+ * A FoxgloveClient floods /fox/big (256 KiB messages) while a raw `ws`
  * client subscribed to it and to the 10 Hz /chatter stops reading for a
  * while: the big topic's queue drops, /chatter's does not.
  */
@@ -184,7 +176,7 @@ async function slow() {
   const bigId = pub.client.advertise({ topic: '/fox/big', encoding: 'cdr', schemaName: 'demo_interfaces/msg/Frame' });
   const big = await until('/fox/big', () => pub.channels.get('/fox/big'));
   const frameWriter = new MessageWriter(parse(big.schema, { ros2: true }));
-  const frame = frameWriter.writeMessage({ height: 512, width: 341, encoding: 'rgb8', is_bigendian: 0, step: 1023, data: new Uint8Array(512 * 1023) });
+  const frame = frameWriter.writeMessage({ height: 256, width: 341, encoding: 'rgb8', is_bigendian: 0, step: 1023, data: new Uint8Array(256 * 1023) });
 
   const ws = new WebSocket(url, [FoxgloveClient.SUPPORTED_SUBPROTOCOL]);
   const got = [];
@@ -202,12 +194,12 @@ async function slow() {
   ws.send(JSON.stringify({ op: 'subscribe', subscriptions: [{ id: 1, channelId: big.id }, { id: 2, channelId: chatterChannel.id }] }));
   await new Promise((r) => setTimeout(r, 300));
   ws._socket.pause();
-  const SENT = 80;
+  const SENT = 100;
   for (let i = 0; i < SENT; i++) {
     pub.client.sendMessage(bigId, frame);
     if (i % 10 === 9) await new Promise((r) => setTimeout(r, 5));
   }
-  await new Promise((r) => setTimeout(r, 700));
+  await new Promise((r) => setTimeout(r, 300));
   ws._socket.resume();
   await new Promise((r) => setTimeout(r, 1500));
   const reader = new MessageReader(parse(chatterChannel.schema, { ros2: true }));
