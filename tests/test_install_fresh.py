@@ -60,6 +60,8 @@ NOT_RUN = {
         'rosbridge server on Humble nodes: tests/test_rosbridge_server.py',
     'colcon-wasm launch demo_nodes/talker --rosbridge-connect':
         'needs a rosbridge server: tests/test_rosbridge_client.py',
+    'colcon-wasm launch my_pkg robot.launch.xml --foxglove':
+        'Foxglove server: tests/test_foxglove_server.py (demo), tests/test_foxglove_rclcpp.py',
 }
 
 COMMAND_PREFIXES = ('colcon', 'colcon-wasm', 'blasm', 'scripts/', 'node ', 'pip ',
