@@ -106,6 +106,8 @@ export class RosbridgeClient {
     this.onChange = onChange || (() => {});
     this.wantRemoteGraph = remoteGraph;
     this.relay = false; // the server is serve's relay (it greets with colcon_wasm_relay)
+    this.relayVersion = 0; // 2: it forwards CDR (cbor-raw) and asks for forms (colcon_wasm_forms)
+    this.forms = new Map(); // topic -> {json, cdr}: what the relay's subscribers need of our messages
     this._reported = null;
     this.state = 'connecting';
     this.remote = { nodes: [], topics: [], services: [] };
@@ -170,6 +172,7 @@ export class RosbridgeClient {
     this.state = 'connected';
     this.log('info', `${again ? 'reconnected' : 'connected'} to ${this.displayUrl}`);
     this._reported = null;
+    this.forms.clear();
     this._send({ op: 'set_level', level: 'warning' });
     for (const b of [...this.out.values(), ...this.draining]) this._advertise(b);
     for (const b of this.in.values()) this._subscribe(b);
@@ -255,7 +258,8 @@ export class RosbridgeClient {
       case 'action_result': this._proxiedResult(msg); break;
       case 'status': this.log(msg.level === 'error' ? 'error' : 'warning', `${this.displayUrl}: ${msg.msg}`); break;
       case 'fragment': this._fragment(msg); break;
-      case 'colcon_wasm_relay': this._relayMode(); break;
+      case 'colcon_wasm_relay': this._relayMode(msg); break;
+      case 'colcon_wasm_forms': this._relayForms(msg); break;
       default: break;
     }
   }
