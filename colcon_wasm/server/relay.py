@@ -10,9 +10,16 @@ routes between those clients, and the rosbridge clients (roslibjs,
 roslibpy) that connect to the ``--rosbridge`` port, as one graph:
 
 * a ``publish`` goes to every other client subscribed to the topic (never
-  back to its sender), as JSON (the relay has no bus and no CDR codec, so
-  ``cbor``/``cbor-raw``/``png`` subscriptions get JSON, with a warning);
-  ``throttle_rate`` is applied, ``ttl`` passed on;
+  back to its sender), in the form the subscription asks for: CDR bytes
+  (a CBOR publish of a colcon-wasm client) to ``cbor-raw`` subscribers as
+  rosbridge's cbor-raw ``publish``; JSON to ``none``, ``png`` (rosbridge's
+  png op) and ``cbor`` (built from the JSON with the type descriptions,
+  relay_forms.py) subscribers, and to ``cbor-raw`` ones when its publisher
+  sends no CDR (a third-party client; one warning per subscription).
+  colcon-wasm publishers are told which forms the others need
+  (``colcon_wasm_forms``). ``throttle_rate``, ``queue_length`` and
+  ``fragment_size`` as the Node.js server applies them (relay_topics.py);
+  ``ttl`` passed on;
 * ``call_service`` goes to the client that advertised the service, with an
   id of the relay's; its ``service_response`` goes back to the caller with
   the caller's id; no answer within the call's ``timeout`` (default 10 s),
@@ -24,11 +31,12 @@ roslibpy) that connect to the ``--rosbridge`` port, as one graph:
   subscribed and (colcon-wasm clients) reported of their nodes
   (``colcon_wasm_graph``), and from the install space's type descriptions.
 
-Bad input gets a ``status`` error naming the field, with the request's id;
-a client that stops reading is cut off at ``max_queued_bytes``
-(websocket.py), never blocking the others. The relay greets each client with
-``{"op": "colcon_wasm_relay"}`` so that colcon-wasm clients switch to JSON
-and report their nodes.
+Requests are JSON text or CBOR (binary). Bad input gets a ``status`` error
+naming the field, with the request's id; a client that stops reading is cut
+off at ``max_queued_bytes`` (websocket.py), never blocking the others. The
+relay greets each client with ``{"op": "colcon_wasm_relay", "version": 2}``
+so that colcon-wasm clients report their nodes and the forms they can send
+(``colcon_wasm_graph``); see docs/bridge.md, "The relay".
 """
 
 import itertools

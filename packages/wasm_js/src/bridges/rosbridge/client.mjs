@@ -9,7 +9,9 @@
  * local graph as it changes:
  *
  *  - a topic local nodes publish: advertised remotely, each message sent
- *    as `publish` (JSON, with `ttl` when the publisher has a lifespan);
+ *    as `publish` (JSON, with `ttl` when the publisher has a lifespan; to
+ *    serve's relay in the forms it asks for with `colcon_wasm_forms`: the
+ *    CDR bytes as a CBOR publish, JSON, or both);
  *  - a topic local nodes subscribe to: subscribed remotely with cbor-raw
  *    compression, each message's CDR bytes published locally unchanged;
  *  - a service local nodes serve: advertised remotely, remote calls are
