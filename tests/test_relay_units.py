@@ -193,14 +193,34 @@ def test_fragments_join_to_the_text():
 class Client:
     """The client end of a relay connection: masked frames out, frames in."""
 
-    def __init__(self, relay):  # noqa: D107
+    def __init__(self, relay=None, sock=None):
+        """Serve one end of a socket pair with ``relay``, or use a connected ``sock``."""
         import threading
-        self.sock, server_side = socket.socketpair()
-        self.thread = threading.Thread(target=relay.serve, args=(server_side, 'test'),
-                                       daemon=True)
-        self.thread.start()
+        if sock is None:
+            sock, server_side = socket.socketpair()
+            threading.Thread(target=relay.serve, args=(server_side, 'test'),
+                             daemon=True).start()
+        self.sock = sock
         self.sock.settimeout(5)
         self.buffer = b''
+
+    @classmethod
+    def connect(cls, url):
+        """Open ws://HOST:PORT (the WebSocket handshake, then frames)."""
+        host, port = url[len('ws://'):].rstrip('/').rsplit(':', 1)
+        sock = socket.create_connection((host, int(port)), timeout=5)
+        sock.sendall(('GET / HTTP/1.1\r\nHost: {}:{}\r\nUpgrade: websocket\r\n'
+                      'Connection: Upgrade\r\nSec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\n'
+                      'Sec-WebSocket-Version: 13\r\n\r\n').format(host, port).encode())
+        client = cls(sock=sock)
+        response = b''
+        while b'\r\n\r\n' not in response:
+            chunk = sock.recv(4096)
+            assert chunk, 'the relay closed during the handshake: {!r}'.format(response)
+            response += chunk
+        head, client.buffer = response.split(b'\r\n\r\n', 1)
+        assert head.startswith(b'HTTP/1.1 101'), head
+        return client
 
     def send(self, obj, binary=False):
         """Send one message (a dict as JSON text, bytes as binary)."""

@@ -167,3 +167,27 @@ def test_roslibjs_and_roslibpy_through_the_relay(served):
     assert 'unknown operation "fly"' in by['unknown op']['msg']
     assert "field 'topic' is missing" in by['missing topic']['msg']
     assert bad['after'] and bad['fragmented']
+
+
+def test_json_publisher_to_cbor_raw_and_bad_binary_on_the_relay_port(served):
+    """On serve's port: JSON from a JSON-only publisher reaches cbor-raw, with one warning."""
+    from test_relay_units import Client
+    pub, sub = Client.connect(served.rosbridge_url), Client.connect(served.rosbridge_url)
+    for c in (pub, sub):
+        assert c.receive()['op'] == 'colcon_wasm_relay'
+        c.send({'op': 'set_level', 'level': 'warning'})
+    pub.send({'op': 'advertise', 'topic': '/plain', 'type': 'std_msgs/msg/String'})
+    sub.send({'op': 'subscribe', 'id': 'p1', 'topic': '/plain', 'type': 'std_msgs/msg/String',
+              'compression': 'cbor-raw'})
+    time.sleep(0.3)
+    for i in range(3):
+        pub.send({'op': 'publish', 'topic': '/plain', 'msg': {'data': 'json {}'.format(i)}})
+    seen = [sub.receive() for _ in range(4)]
+    assert [m['op'] for m in seen].count('status') == 1, seen
+    assert [m['msg']['data'] for m in seen if m['op'] == 'publish'] == [
+        'json 0', 'json 1', 'json 2'], seen
+    sub.send(b'\xff\x00', binary=True)
+    error = sub.until(lambda m: m.get('op') == 'status')
+    assert error['level'] == 'error' and 'not CBOR' in error['msg'], error
+    pub.send({'op': 'publish', 'topic': '/plain', 'msg': {'data': 'after'}})
+    assert sub.until(lambda m: m.get('op') == 'publish')['msg'] == {'data': 'after'}
