@@ -247,12 +247,11 @@ export class ClientTopics {
    */
   _relayMode(msg) {
     const version = Number.isInteger(msg && msg.version) ? msg.version : 1;
-    if (this.relay && this.relayVersion === version) return;
     const wasJsonOnly = this.relay && this.relayVersion < 2;
     this.relay = true;
     this.relayVersion = version;
     if ((version < 2) !== wasJsonOnly) for (const b of this.in.values()) this._subscribe(b);
-    this._reported = null;
+    this._reported = null; // on every greeting: a reconnected relay has forgotten our nodes
     this._reportGraph();
   }
 
