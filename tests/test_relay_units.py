@@ -227,7 +227,12 @@ class Client:
         payload = obj if binary else json.dumps(obj).encode('utf-8')
         n = len(payload)
         head = bytes([0x82 if binary else 0x81])
-        head += bytes([0x80 | n]) if n < 126 else struct.pack('>BH', 0x80 | 126, n)
+        if n < 126:
+            head += bytes([0x80 | n])
+        elif n < 65536:
+            head += struct.pack('>BH', 0x80 | 126, n)
+        else:
+            head += struct.pack('>BQ', 0x80 | 127, n)
         self.sock.sendall(head + b'\0\0\0\0' + payload)
 
     def _read(self, n):
@@ -357,3 +362,38 @@ def _cbor(obj):
     w = relay_forms.CborWriter()
     w.value(obj)
     return w.result()
+
+
+def test_png_fragments_and_binary_limits_on_subscriptions():
+    """png and fragment_size as subscribed; a binary request past the size limit is dropped."""
+    relay = Relay(types=[TYPES], max_message_bytes=400)
+    try:
+        pub, png, frag = Client(relay), Client(relay), Client(relay)
+        for c in (pub, png, frag):
+            c.receive()
+        pub.send({'op': 'advertise', 'topic': '/p', 'type': 't/msg/Time'})
+        png.send({'op': 'subscribe', 'topic': '/p', 'compression': 'png'})
+        frag.send({'op': 'subscribe', 'topic': '/p', 'fragment_size': 100, 'id': 'a'})
+        frag.send({'op': 'subscribe', 'topic': '/p', 'fragment_size': 20, 'id': 'b'})
+        time.sleep(0.1)
+        pub.send({'op': 'publish', 'topic': '/p', 'msg': {'sec': 7, 'nanosec': 8}})
+        m = png.until(lambda m: m.get('op') == 'png')
+        chunks = _png_parts(m['data'])
+        width = struct.unpack('>II', chunks[0][1][:8])[0]
+        rows = chunks[1][1]
+        text = b''.join(rows[i + 1:i + 1 + width * 3] for i in range(0, len(rows), width * 3 + 1))
+        assert json.loads(text.rstrip(b'\n'))['msg'] == {'sec': 7, 'nanosec': 8}
+        parts = [frag.until(lambda m: m.get('op') == 'fragment')]
+        parts += [frag.receive() for _ in range(parts[0]['total'] - 1)]
+        assert all(len(p['data']) <= 20 for p in parts) and parts[0]['total'] > 2, parts
+        assert json.loads(''.join(p['data'] for p in parts))['msg'] == {'sec': 7, 'nanosec': 8}
+        pub.send({'op': 'set_level', 'level': 'warning'})
+        pub.send(_cbor({'op': 'publish', 'topic': '/p', 'msg': {'bytes': b'\0' * 500}}),
+                 binary=True)
+        error = pub.until(lambda m: m.get('op') == 'status')
+        assert 'larger than the limit of 400 bytes' in error['msg'], error
+        pub.send(_cbor({'op': 'publish', 'topic': '/p', 'msg': {'sec': 9, 'nanosec': 0}}),
+                 binary=True)
+        assert png.until(lambda m: m.get('op') == 'png') is not None
+    finally:
+        relay.close()
