@@ -1,0 +1,274 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""Node, Publisher, Subscription and Timer on the bus."""
+
+import time
+
+from rclpy import _messages
+from rclpy._bus import bus
+from rclpy._bus import plain_to_js
+from rclpy.context import default_context
+from rclpy.logging import RcutilsLogger
+from rclpy.qos import profile_of
+
+
+class Publisher:
+    """Publishes messages of one type on one topic."""
+
+    def __init__(self, node, msg_type, topic, handle, qos_profile):
+        """Made by Node.create_publisher."""
+        self.node = node
+        self.msg_type = msg_type
+        self.topic = topic
+        self.qos_profile = qos_profile
+        self._type_name = _messages.type_name(msg_type)
+        self._handle = handle
+
+    @property
+    def topic_name(self):
+        """Return the fully qualified topic name."""
+        return self.topic
+
+    def publish(self, msg):
+        """Publish a message (an instance of msg_type)."""
+        if not isinstance(msg, self.msg_type):
+            raise TypeError('Expected {}, got {}'.format(self.msg_type, type(msg)))
+        bus.publish(self._handle, self._type_name, plain_to_js(msg._to_plain()))
+
+    def get_subscription_count(self):
+        """Return the number of matched subscriptions."""
+        return bus.matched_count(self._handle)
+
+    def destroy(self):
+        """Leave the graph."""
+        if self._handle is not None:
+            bus.destroy_endpoint(self._handle)
+            self._handle = None
+
+
+class Subscription:
+    """Calls ``callback(msg)`` for each message of a topic."""
+
+    def __init__(self, node, msg_type, topic, callback, handle, qos_profile):
+        """Made by Node.create_subscription."""
+        self.node = node
+        self.msg_type = msg_type
+        self.topic = topic
+        self.callback = callback
+        self.qos_profile = qos_profile
+        self._type_name = _messages.type_name(msg_type)
+        self._handle = handle
+
+    @property
+    def topic_name(self):
+        """Return the fully qualified topic name."""
+        return self.topic
+
+    def _take(self):
+        value = bus.take(self._handle, self._type_name)
+        if value is None:
+            return None
+        return self.msg_type._from_plain(value.to_py())
+
+    def get_publisher_count(self):
+        """Return the number of matched publishers."""
+        return bus.matched_count(self._handle)
+
+    def destroy(self):
+        """Leave the graph."""
+        if self._handle is not None:
+            bus.destroy_endpoint(self._handle)
+            self._handle = None
+
+
+class Timer:
+    """Calls ``callback()`` every ``timer_period_ns`` (monotonic clock)."""
+
+    def __init__(self, callback, timer_period_sec):
+        """Made by Node.create_timer; first call one period from now."""
+        if timer_period_sec <= 0:
+            raise ValueError('timer period must be > 0, got {}'.format(timer_period_sec))
+        self.callback = callback
+        self.timer_period_ns = int(timer_period_sec * 1e9)
+        self._period = timer_period_sec
+        self._next = time.monotonic() + timer_period_sec
+        self._canceled = False
+
+    def cancel(self):
+        """Stop calling back."""
+        self._canceled = True
+
+    def reset(self):
+        """Start a period from now."""
+        self._canceled = False
+        self._next = time.monotonic() + self._period
+
+    def is_canceled(self):
+        """Return True when canceled."""
+        return self._canceled
+
+    def time_until_next_call(self):
+        """Return nanoseconds until the next call (None when canceled)."""
+        if self._canceled:
+            return None
+        return max(0, int((self._next - time.monotonic()) * 1e9))
+
+    def destroy(self):
+        """Stop calling back."""
+        self.cancel()
+
+    def _due(self, now):
+        return not self._canceled and now >= self._next
+
+    def _advance(self, now):
+        self._next += self._period
+        if self._next <= now:  # late by more than a period: do not call in a burst
+            self._next = now + self._period
+
+
+class Time:
+    """A point in time of a clock (nanoseconds)."""
+
+    def __init__(self, *, seconds=0, nanoseconds=0):
+        """Create a time."""
+        self.nanoseconds = int(seconds * 10 ** 9) + int(nanoseconds)
+
+    def seconds_nanoseconds(self):
+        """Return (seconds, nanoseconds)."""
+        return divmod(self.nanoseconds, 10 ** 9)
+
+
+class Clock:
+    """The system clock."""
+
+    def now(self):
+        """Return the current time."""
+        return Time(nanoseconds=time.time_ns())
+
+
+def _expand(name, namespace, node_name, what):
+    if not name:
+        raise ValueError('{} name must not be empty'.format(what))
+    if name.startswith('~'):
+        base = namespace.rstrip('/') + '/' + node_name
+        name = base + name[1:]
+    elif not name.startswith('/'):
+        name = namespace.rstrip('/') + '/' + name
+    return name
+
+
+class Node:
+    """A ROS node of this process on the bus."""
+
+    def __init__(self, node_name, *, context=None, namespace=None, cli_args=None,
+                 **kwargs):
+        """Create the node (it joins the graph now); ``-r __node:=`` and ``__ns:=`` apply."""
+        self.context = context or default_context()
+        self.context._check_ok('create a node')
+        remaps = self.context.remappings(cli_args)
+        node_name = remaps.get('__node', node_name)
+        namespace = remaps.get('__ns', namespace) or '/'
+        if not namespace.startswith('/'):
+            namespace = '/' + namespace
+        if len(namespace) > 1:
+            namespace = namespace.rstrip('/')
+        self._remaps = remaps
+        self._name = node_name
+        self._namespace = namespace
+        self._handle = bus.create_node(node_name, namespace, self.context.domain_id)
+        self._logger = RcutilsLogger(node_name if namespace == '/' else
+                                     namespace.strip('/').replace('/', '.') + '.' + node_name)
+        self._clock = Clock()
+        self.publishers = []
+        self.subscriptions = []
+        self.timers = []
+        self.context._nodes.append(self)
+
+    def get_name(self):
+        """Return the node's name."""
+        return self._name
+
+    def get_namespace(self):
+        """Return the node's namespace."""
+        return self._namespace
+
+    def get_fully_qualified_name(self):
+        """Return ``/ns/name``."""
+        return self._namespace.rstrip('/') + '/' + self._name
+
+    def get_logger(self):
+        """Return the node's logger."""
+        return self._logger
+
+    def get_clock(self):
+        """Return the node's clock (the system clock)."""
+        return self._clock
+
+    def resolve_topic_name(self, topic):
+        """Expand a topic name (relative, ``~``) and apply remappings."""
+        topic = self._remaps.get(topic, topic)
+        full = _expand(topic, self._namespace, self._name, 'topic')
+        return self._remaps.get(full, full)
+
+    def create_publisher(self, msg_type, topic, qos_profile, **kwargs):
+        """Create a publisher; ``qos_profile`` is a QoSProfile or a history depth."""
+        qos = profile_of(qos_profile)
+        type_name = _messages.type_name(msg_type)
+        name = self.resolve_topic_name(topic)
+        handle = bus.create_publisher(self._handle, name, type_name, qos.to_bus())
+        publisher = Publisher(self, msg_type, name, handle, qos)
+        self.publishers.append(publisher)
+        return publisher
+
+    def create_subscription(self, msg_type, topic, callback, qos_profile, **kwargs):
+        """Create a subscription that calls ``callback(msg)`` while the node spins."""
+        qos = profile_of(qos_profile)
+        type_name = _messages.type_name(msg_type)
+        name = self.resolve_topic_name(topic)
+        handle = bus.create_subscription(self._handle, name, type_name, qos.to_bus())
+        subscription = Subscription(self, msg_type, name, callback, handle, qos)
+        self.subscriptions.append(subscription)
+        return subscription
+
+    def create_timer(self, timer_period_sec, callback, callback_group=None, clock=None):
+        """Create a timer that calls ``callback()`` every period while the node spins."""
+        timer = Timer(callback, timer_period_sec)
+        self.timers.append(timer)
+        return timer
+
+    def destroy_publisher(self, publisher):
+        """Destroy a publisher of this node."""
+        publisher.destroy()
+        if publisher in self.publishers:
+            self.publishers.remove(publisher)
+        return True
+
+    def destroy_subscription(self, subscription):
+        """Destroy a subscription of this node."""
+        subscription.destroy()
+        if subscription in self.subscriptions:
+            self.subscriptions.remove(subscription)
+        return True
+
+    def destroy_timer(self, timer):
+        """Destroy a timer of this node."""
+        timer.destroy()
+        if timer in self.timers:
+            self.timers.remove(timer)
+        return True
+
+    def destroy_node(self):
+        """Leave the graph with every endpoint of this node."""
+        for publisher in list(self.publishers):
+            self.destroy_publisher(publisher)
+        for subscription in list(self.subscriptions):
+            self.destroy_subscription(subscription)
+        for timer in list(self.timers):
+            self.destroy_timer(timer)
+        if self._handle is not None:
+            bus.destroy_node(self._handle)
+            self._handle = None
+        if self in self.context._nodes:
+            self.context._nodes.remove(self)
+        return True
