@@ -78,10 +78,10 @@ function busModule(client, registry, context, settle) {
     publish(ep, type, value) {
       return client.publish(ep, registry.encode(type, value), 10000);
     },
-    /** The next message of a subscription, decoded, or null. */
+    /** The next message of a subscription, decoded, or undefined (None in Python). */
     take(ep, type) {
       const data = client.take(ep, TakeMode.MESSAGE);
-      return data === null ? null : registry.decode(type, data);
+      return data === null ? undefined : registry.decode(type, data);
     },
     matched_count(ep) {
       return client.matchedCount(ep);
