@@ -37,9 +37,9 @@ def default_pyodide_prefix():
 def install_hint():
     """Return the commands that install Pyodide where it is looked for."""
     prefix = default_pyodide_prefix()
-    return ("npm install --prefix '{}' pyodide@{} (or install it elsewhere and set {} to "
-            'its node_modules/pyodide folder)'.format(prefix, PYODIDE_VERSION,
-                                                       PYODIDE_ENVIRONMENT_VARIABLE))
+    text = ("npm install --prefix '{}' pyodide@{} (or install it elsewhere and set {} to "
+            'its node_modules/pyodide folder)')
+    return text.format(prefix, PYODIDE_VERSION, PYODIDE_ENVIRONMENT_VARIABLE)
 
 
 def find_pyodide(option=None):

@@ -10,7 +10,7 @@ CDR implementation.
 """
 
 try:
-    import _colcon_wasm_bus as bus
+    import _colcon_wasm_bus as bus  # noqa: F401 (rclpy's modules import it from here)
     import js
     from pyodide.ffi import to_js
 except ImportError as e:  # pragma: no cover - outside the runtime

@@ -140,7 +140,7 @@ def _default(field):
 
 
 def _to_plain(field, value):
-    """A value for cdr.mjs (through Pyodide's to_js)."""
+    """Convert a field value for cdr.mjs (through Pyodide's to_js)."""
     kind = field['type']
     nested = kind not in _INT_RANGES and kind not in _FLOATS and \
         kind not in ('bool', 'string', 'wstring')
@@ -169,7 +169,7 @@ def _from_plain(field, value):
 
 
 class Message:
-    """The base of the generated message classes."""
+    """Base of the generated message classes."""
 
     __slots__ = ()
     _fields = ()

@@ -1,7 +1,7 @@
 # Copyright 2026 colcon-wasm contributors
 # Licensed under the Apache License, Version 2.0
 
-"""Futures (rclpy.task.Future): done, result, exception, callbacks."""
+"""rclpy.task: Future (done, result, exception, callbacks)."""
 
 
 class Future:
@@ -30,7 +30,7 @@ class Future:
             self._run_callbacks()
 
     def result(self):
-        """Return the result (raises the exception that was set)."""
+        """Return what completed the future; raise the exception set instead."""
         if self._exception is not None:
             raise self._exception
         return self._result
