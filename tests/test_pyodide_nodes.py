@@ -70,6 +70,24 @@ def test_python_and_cpp_nodes_hear_each_other_and_a_python_crash_is_contained(in
     assert code == 1, out[-3000:]  # a process crashed
 
 
+def test_python_services_and_clients_talk_to_cpp_ones(install):
+    code, out = colcon_wasm(
+        'launch', '--install-base', install, '--duration', 40,
+        '--python', DATA / 'add_server.py', '--python', DATA / 'add_client.py',
+        DATA / 'services.launch.xml')
+    # C++ client -> Python server on /add_two_ints
+    assert re.search(r'\[add_server-3\] .*\[py_server\]: Incoming request: a: (\d+) '
+                     r'b: \d+', out), out[-6000:]
+    assert re.search(r'\[add_two_ints_client-2\] .*Result of add_two_ints: for (\d+) \+ \d+ = '
+                     r'\d+', out), out[-6000:]
+    # Python client -> C++ server on /cpp_add_two_ints, int64 beyond 2**32 included
+    for a in (1, 20, 2 ** 40):
+        assert '[py_client]: Result of add_two_ints: for {} + {} = {}'.format(
+            a, 2 * a, 3 * a) in out, out[-6000:]
+    assert '[INFO] [add_client-4]: process has finished cleanly' in out
+    assert code == 0, out[-3000:]
+
+
 def test_message_classes_and_cdr_round_trip(install):
     code, out = colcon_wasm('run', '--install-base', install, '--duration', 60,
                             '--python', DATA / 'messages.py')

@@ -20,8 +20,11 @@ import path from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 import { parentPort } from 'node:worker_threads';
 
-import { BusClient, KIND_PUBLISHER, KIND_SUBSCRIPTION, TakeMode, WAIT_ITEM_WORDS, WaitKind } from '../bus_client.mjs';
+import {
+  BusClient, KIND_CLIENT, KIND_PUBLISHER, KIND_SERVICE, KIND_SUBSCRIPTION, TakeMode, WAIT_ITEM_WORDS, WaitKind,
+} from '../bus_client.mjs';
 import { TypeRegistry } from '../cdr.mjs';
+import { H } from '../layout.mjs';
 import { FromHost } from '../protocol.mjs';
 
 /** Where the rclpy package lives inside Pyodide's file system. */
@@ -51,6 +54,8 @@ function pythonFiles(dir, prefix = '') {
   }
   return out;
 }
+
+const WAIT_KINDS = { subscription: WaitKind.SUBSCRIPTION, service: WaitKind.SERVICE, client: WaitKind.CLIENT };
 
 /** The `_colcon_wasm_bus` module: what rclpy calls (plain values in, plain values out). */
 function busModule(client, registry, context, settle) {
@@ -83,20 +88,70 @@ function busModule(client, registry, context, settle) {
       const data = client.take(ep, TakeMode.MESSAGE);
       return data === null ? undefined : registry.decode(type, data);
     },
+    create_service(node, name, type, qosJson) {
+      registry.service(type);
+      return client.createEndpoint({ kind: KIND_SERVICE, node, name, type, qos: JSON.parse(qosJson) }).index;
+    },
+    create_client(node, name, type, qosJson) {
+      registry.service(type);
+      return client.createEndpoint({ kind: KIND_CLIENT, node, name, type, qos: JSON.parse(qosJson) }).index;
+    },
+    /** The next request of a service: {value, id} (id: for send_response), or undefined. */
+    take_request(ep, type) {
+      const data = client.take(ep, TakeMode.REQUEST);
+      if (data === null) return undefined;
+      const i = client.info;
+      return { value: registry.decode(type, data), id: { gid: Array.from(i.gid), seqLo: i.reqLo, seqHi: i.reqHi } };
+    },
+    send_response(ep, id, type, value) {
+      return client.sendResponse(ep, id.gid, id.seqLo, id.seqHi, registry.encode(type, value), 10000);
+    },
+    /** Send a request; returns its sequence number (the response carries it). */
+    send_request(ep, type, value) {
+      return client.publish(ep, registry.encode(type, value), 10000);
+    },
+    /** The next response of a client: {value, seq}, or undefined. */
+    take_response(ep, type) {
+      const data = client.take(ep, TakeMode.RESPONSE);
+      if (data === null) return undefined;
+      const i = client.info;
+      return { value: registry.decode(type, data), seq: i.reqHi * 4294967296 + (i.reqLo >>> 0) };
+    },
+    server_available(ep) {
+      return client.serverAvailable(ep);
+    },
+    /**
+     * Block until a client has a server or `timeoutMs` passed (< 0: forever):
+     * sleeps on the bus' graph version, which every graph change bumps.
+     */
+    wait_for_server(ep, timeoutMs) {
+      const i32 = client.bus.i32;
+      const end = timeoutMs < 0 ? Infinity : performance.now() + timeoutMs;
+      for (;;) {
+        const version = Atomics.load(i32, H.GRAPH_VERSION);
+        if (client.serverAvailable(ep)) return true;
+        const left = end - performance.now();
+        if (left <= 0) return false;
+        settle();
+        Atomics.wait(i32, H.GRAPH_VERSION, version, left);
+      }
+    },
     matched_count(ep) {
       return client.matchedCount(ep);
     },
     /**
-     * Block until one of the subscriptions has a message or the timeout
-     * passes (< 0: forever). Returns the ready flags, one per handle.
+     * Block until one of the endpoints has something to take or the timeout
+     * passes (< 0: forever). `kinds`: 'subscription', 'service' or 'client',
+     * one per handle. Returns the ready flags, one per handle.
      */
-    wait(handles, timeoutMs) {
+    wait(handles, kinds, timeoutMs) {
       const list = Array.from(handles);
+      const kindList = Array.from(kinds);
       const n = list.length;
       if (items.length < n * WAIT_ITEM_WORDS) items = new Int32Array(n * WAIT_ITEM_WORDS);
       for (let i = 0; i < n; i++) {
         const o = i * WAIT_ITEM_WORDS;
-        items[o] = WaitKind.SUBSCRIPTION;
+        items[o] = WAIT_KINDS[kindList[i]];
         items[o + 1] = list[i];
         items[o + 2] = 0;
         items[o + 3] = 0;

@@ -273,12 +273,32 @@ def message_class(full):
     return cls
 
 
+def service_class(full):
+    """Return the class of a service type ``pkg/srv/Name``: its Request and Response."""
+    cls = _classes.get(full)
+    if cls is None:
+        description = _descriptions.get('services', {}).get(full)
+        if description is None:
+            raise ImportError('unknown service type {!r}: build its package with '
+                              'colcon build --wasm into this install space'.format(full))
+        pkg, kind, name = full.split('/')
+        cls = type(name, (), {
+            'Request': message_class(description['request']),
+            'Response': message_class(description['response']),
+            '_type': full,
+            '__module__': '{}.{}'.format(pkg, kind),
+            '__doc__': description.get('definition') or 'Service {}.'.format(full),
+        })
+        _classes[full] = cls
+    return cls
+
+
 def type_name(msg_type):
-    """Return the ROS type name of a generated message class."""
+    """Return the ROS type name of a generated message or service class."""
     name = getattr(msg_type, '_type', None)
     if not name:
-        raise TypeError('{!r} is not a message class of this rclpy (import it from '
-                        '<package>.msg)'.format(msg_type))
+        raise TypeError('{!r} is not a message or service class of this rclpy (import it '
+                        'from <package>.msg or <package>.srv)'.format(msg_type))
     return name
 
 
@@ -301,10 +321,14 @@ class _InterfaceFinder(importlib.abc.MetaPathFinder, importlib.abc.Loader):
             return module
         pkg, kind = parts
         prefix = '{}/{}/'.format(pkg, kind)
-        table = _descriptions.get('messages', {}) if kind == 'msg' else {}
+        table = _descriptions.get('messages', {}) if kind in ('msg', 'srv') else {}
         for full in sorted(table):
             if full.startswith(prefix):
                 setattr(module, full[len(prefix):], message_class(full))
+        if kind == 'srv':
+            for full in sorted(_descriptions.get('services', {})):
+                if full.startswith(prefix):
+                    setattr(module, full[len(prefix):], service_class(full))
         return module
 
     def exec_module(self, module):  # noqa: D102

@@ -68,6 +68,8 @@ class Executor:
         """Wait for work (at most ``timeout_sec``; None: until there is some) and do it."""
         nodes = [n for n in self._nodes if n._handle is not None]
         subscriptions = [s for n in nodes for s in n.subscriptions if s._handle is not None]
+        services = [s for n in nodes for s in n.services if s._handle is not None]
+        clients = [c for n in nodes for c in n.clients if c._handle is not None]
         timers = [t for n in nodes for t in n.timers if not t.is_canceled()]
         now = time.monotonic()
         wait = -1.0 if timeout_sec is None or timeout_sec < 0 else timeout_sec
@@ -75,7 +77,11 @@ class Executor:
             until_timer = max(0.0, min(t._next for t in timers) - now)
             wait = until_timer if wait < 0 else min(wait, until_timer)
         timeout_ms = -1 if wait < 0 else wait * 1000.0
-        ready = list(bus.wait(handles_to_js(s._handle for s in subscriptions), timeout_ms))
+        entities = subscriptions + services + clients
+        kinds = (['subscription'] * len(subscriptions) + ['service'] * len(services)
+                 + ['client'] * len(clients))
+        ready = list(bus.wait(handles_to_js(e._handle for e in entities), handles_to_js(kinds),
+                              timeout_ms))
         for subscription, flag in zip(subscriptions, ready):
             if not flag:
                 continue
@@ -84,6 +90,14 @@ class Executor:
                 if msg is None:
                     break
                 subscription.callback(msg)
+        offset = len(subscriptions)
+        for service, flag in zip(services, ready[offset:offset + len(services)]):
+            while flag and service._handle is not None and service._serve_one():
+                pass
+        offset += len(services)
+        for client, flag in zip(clients, ready[offset:]):
+            while flag and client._handle is not None and client._take_one():
+                pass
         now = time.monotonic()
         for timer in timers:
             if timer._due(now):

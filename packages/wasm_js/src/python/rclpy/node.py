@@ -11,6 +11,8 @@ from rclpy._bus import plain_to_js
 from rclpy.context import default_context
 from rclpy.logging import RcutilsLogger
 from rclpy.qos import profile_of
+from rclpy.qos import qos_profile_services_default
+from rclpy.task import Future
 
 
 class Publisher:
@@ -74,6 +76,94 @@ class Subscription:
     def get_publisher_count(self):
         """Return the number of matched publishers."""
         return bus.matched_count(self._handle)
+
+    def destroy(self):
+        """Leave the graph."""
+        if self._handle is not None:
+            bus.destroy_endpoint(self._handle)
+            self._handle = None
+
+
+class Service:
+    """Answers requests: ``callback(request, response)`` returns the response."""
+
+    def __init__(self, node, srv_type, srv_name, callback, handle, qos_profile):
+        """Made by Node.create_service."""
+        self.node = node
+        self.srv_type = srv_type
+        self.srv_name = srv_name
+        self.callback = callback
+        self.qos_profile = qos_profile
+        self._type_name = _messages.type_name(srv_type)
+        self._request = _messages.type_name(srv_type.Request)
+        self._response = _messages.type_name(srv_type.Response)
+        self._handle = handle
+
+    @property
+    def service_name(self):
+        """Return the fully qualified service name."""
+        return self.srv_name
+
+    def _serve_one(self):
+        taken = bus.take_request(self._handle, self._request)
+        if taken is None:
+            return False
+        request = self.srv_type.Request._from_plain(taken.value.to_py())
+        response = self.callback(request, self.srv_type.Response())
+        if not isinstance(response, self.srv_type.Response):
+            raise TypeError('the callback of service {!r} returned {!r}, not a {}'.format(
+                self.srv_name, type(response), self.srv_type.Response))
+        bus.send_response(self._handle, taken.id, self._response,
+                          plain_to_js(response._to_plain()))
+        return True
+
+    def destroy(self):
+        """Leave the graph."""
+        if self._handle is not None:
+            bus.destroy_endpoint(self._handle)
+            self._handle = None
+
+
+class Client:
+    """Calls a service: ``call_async(request)`` returns a Future of the response."""
+
+    def __init__(self, node, srv_type, srv_name, handle, qos_profile):
+        """Made by Node.create_client."""
+        self.node = node
+        self.srv_type = srv_type
+        self.srv_name = srv_name
+        self.qos_profile = qos_profile
+        self._request = _messages.type_name(srv_type.Request)
+        self._response = _messages.type_name(srv_type.Response)
+        self._handle = handle
+        self._pending = {}
+
+    def call_async(self, request):
+        """Send a request; the Future completes while the node spins."""
+        if not isinstance(request, self.srv_type.Request):
+            raise TypeError('Expected {}, got {}'.format(self.srv_type.Request, type(request)))
+        sequence = bus.send_request(self._handle, self._request, plain_to_js(request._to_plain()))
+        future = Future()
+        self._pending[int(sequence)] = future
+        return future
+
+    def service_is_ready(self):
+        """Return True when a server is matched."""
+        return bool(bus.server_available(self._handle))
+
+    def wait_for_service(self, timeout_sec=None):
+        """Block until a server is there (sleeping on graph changes); False on timeout."""
+        timeout_ms = -1 if timeout_sec is None or timeout_sec < 0 else timeout_sec * 1000.0
+        return bool(bus.wait_for_server(self._handle, timeout_ms))
+
+    def _take_one(self):
+        taken = bus.take_response(self._handle, self._response)
+        if taken is None:
+            return False
+        future = self._pending.pop(int(taken.seq), None)
+        if future is not None and not future.done():
+            future.set_result(self.srv_type.Response._from_plain(taken.value.to_py()))
+        return True
 
     def destroy(self):
         """Leave the graph."""
@@ -183,6 +273,8 @@ class Node:
         self.publishers = []
         self.subscriptions = []
         self.timers = []
+        self.services = []
+        self.clients = []
         self.context._nodes.append(self)
 
     def get_name(self):
@@ -237,6 +329,45 @@ class Node:
         self.timers.append(timer)
         return timer
 
+    def create_service(self, srv_type, srv_name, callback, *,
+                       qos_profile=qos_profile_services_default, **kwargs):
+        """Create a service server; ``callback(request, response)`` returns the response."""
+        name = self._resolve_service_name(srv_name)
+        handle = bus.create_service(self._handle, name, _messages.type_name(srv_type),
+                                    qos_profile.to_bus())
+        service = Service(self, srv_type, name, callback, handle, qos_profile)
+        self.services.append(service)
+        return service
+
+    def create_client(self, srv_type, srv_name, *, qos_profile=qos_profile_services_default,
+                      **kwargs):
+        """Create a service client."""
+        name = self._resolve_service_name(srv_name)
+        handle = bus.create_client(self._handle, name, _messages.type_name(srv_type),
+                                   qos_profile.to_bus())
+        client = Client(self, srv_type, name, handle, qos_profile)
+        self.clients.append(client)
+        return client
+
+    def _resolve_service_name(self, name):
+        name = self._remaps.get(name, name)
+        full = _expand(name, self._namespace, self._name, 'service')
+        return self._remaps.get(full, full)
+
+    def destroy_service(self, service):
+        """Destroy a service server of this node."""
+        service.destroy()
+        if service in self.services:
+            self.services.remove(service)
+        return True
+
+    def destroy_client(self, client):
+        """Destroy a service client of this node."""
+        client.destroy()
+        if client in self.clients:
+            self.clients.remove(client)
+        return True
+
     def destroy_publisher(self, publisher):
         """Destroy a publisher of this node."""
         publisher.destroy()
@@ -266,6 +397,10 @@ class Node:
             self.destroy_subscription(subscription)
         for timer in list(self.timers):
             self.destroy_timer(timer)
+        for service in list(self.services):
+            self.destroy_service(service)
+        for client in list(self.clients):
+            self.destroy_client(client)
         if self._handle is not None:
             bus.destroy_node(self._handle)
             self._handle = None

@@ -75,4 +75,5 @@ def profile_of(qos_profile):
 
 
 qos_profile_system_default = QoSProfile(depth=10)
+qos_profile_services_default = QoSProfile(depth=10)
 qos_profile_sensor_data = QoSProfile(depth=5, reliability=ReliabilityPolicy.BEST_EFFORT)
