@@ -88,11 +88,11 @@ def test_python_services_and_clients_talk_to_cpp_ones(install):
     assert code == 0, out[-3000:]
 
 
-def test_message_classes_and_cdr_round_trip(install):
+def test_message_classes_parameters_and_cdr_round_trip(install):
     code, out = colcon_wasm('run', '--install-base', install, '--duration', 60,
                             '--python', DATA / 'messages.py')
     assert code == 0, out[-4000:]
-    assert '[py_messages]: message classes behave' in out
+    assert '[checks.py_messages]: message classes behave' in out
     assert '[INFO] [messages-1]: process has finished cleanly' in out
 
 

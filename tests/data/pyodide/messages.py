@@ -1,9 +1,12 @@
-"""Message classes made from types.json, checked as rosidl_generator_py's behave; exits 0."""
+"""Message classes (as rosidl_generator_py's behave) and node parameters; exits 0."""
 
 import array
 
 import rclpy
 from rclpy.node import Node
+from rclpy.node import ParameterNotDeclaredException
+from rclpy.parameter import Parameter
+from rclpy.parameter import SetParametersResult
 
 from demo_interfaces.msg import Chatter, Frame, Sample
 from std_msgs.msg import String
@@ -18,8 +21,25 @@ def expect_assertion(make, text):
         raise SystemExit('no AssertionError for ' + text)
 
 
-rclpy.init()
+rclpy.init(args=['messages.py', '--ros-args', '-p', 'rate:=2.5', '-p', 'py_messages:label:=hi',
+                 '-p', 'other:label:=no', '-r', '__ns:=/checks'])
 node = Node('py_messages')
+assert node.get_fully_qualified_name() == '/checks/py_messages', node.get_fully_qualified_name()
+# parameters: overrides from -p, defaults, callbacks that may refuse
+assert node.declare_parameter('rate', 1.0).value == 2.5
+assert node.declare_parameter('label', 'x').value == 'hi'
+assert node.declare_parameter('count', 3).type_ == Parameter.Type.INTEGER
+node.add_on_set_parameters_callback(
+    lambda ps: SetParametersResult(successful=all(p.value != 13 for p in ps), reason='13 is unlucky'))
+results = node.set_parameters([Parameter('count', value=4), Parameter('count', value=13)])
+assert [r.successful for r in results] == [True, False] and results[1].reason == '13 is unlucky'
+assert node.get_parameter('count').value == 4
+try:
+    node.get_parameter('nope')
+except ParameterNotDeclaredException:
+    pass
+else:
+    raise SystemExit('an undeclared parameter must raise')
 chatter = Chatter(data='hi', count=3)
 assert chatter == Chatter(data='hi', count=3)
 assert chatter != Chatter(data='hi', count=4)

@@ -49,6 +49,30 @@ class Context:
             raise RuntimeError('cannot {}: call rclpy.init() first (or the context '
                                'was shut down)'.format(what))
 
+    def parameter_overrides(self, node_name, cli_args=None):
+        """Return the ``-p [node:]name:=value`` values of the ROS arguments for a node."""
+        from rclpy.parameter import parse_value
+        values = {}
+        for args in (self._args, cli_args or []):
+            inside = False
+            it = iter(args)
+            for arg in it:
+                if arg == '--ros-args':
+                    inside = True
+                elif arg == '--':
+                    inside = False
+                elif inside and arg in ('-p', '--param'):
+                    rule = next(it, '')
+                    if ':=' not in rule:
+                        continue
+                    name, value = rule.split(':=', 1)
+                    if ':' in name:
+                        node, name = name.split(':', 1)
+                        if node != node_name:
+                            continue
+                    values[name] = parse_value(value)
+        return values
+
     def remappings(self, cli_args=None):
         """Return the ``-r from:=to`` rules of the ROS arguments (``--ros-args``)."""
         rules = {}

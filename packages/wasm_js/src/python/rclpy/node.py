@@ -10,6 +10,8 @@ from rclpy._bus import bus
 from rclpy._bus import plain_to_js
 from rclpy.context import default_context
 from rclpy.logging import RcutilsLogger
+from rclpy.parameter import Parameter
+from rclpy.parameter import SetParametersResult
 from rclpy.qos import profile_of
 from rclpy.qos import qos_profile_services_default
 from rclpy.task import Future
@@ -275,6 +277,9 @@ class Node:
         self.timers = []
         self.services = []
         self.clients = []
+        self._parameters = {}
+        self._parameter_callbacks = []
+        self._overrides = self.context.parameter_overrides(node_name, cli_args)
         self.context._nodes.append(self)
 
     def get_name(self):
@@ -368,6 +373,71 @@ class Node:
             self.clients.remove(client)
         return True
 
+    def declare_parameter(self, name, value=None, descriptor=None, ignore_override=False):
+        """Declare a parameter; a ``-p name:=value`` override wins over ``value``."""
+        if name in self._parameters:
+            raise ParameterAlreadyDeclaredException(name)
+        if not ignore_override and name in self._overrides:
+            value = self._overrides[name]
+        parameter = Parameter(name, value=value)
+        result = self._run_parameter_callbacks([parameter])
+        if not result.successful:
+            raise InvalidParameterValueException(name, value, result.reason)
+        self._parameters[name] = parameter
+        return parameter
+
+    def declare_parameters(self, namespace, parameters):
+        """Declare ``[(name, value), ...]`` under ``namespace.``."""
+        prefix = namespace + '.' if namespace else ''
+        return [self.declare_parameter(prefix + entry[0], *entry[1:2]) for entry in parameters]
+
+    def has_parameter(self, name):
+        """Return True when the parameter is declared."""
+        return name in self._parameters
+
+    def get_parameter(self, name):
+        """Return a declared parameter."""
+        if name not in self._parameters:
+            raise ParameterNotDeclaredException(name)
+        return self._parameters[name]
+
+    def get_parameter_or(self, name, alternative_value=None):
+        """Return a declared parameter, else ``alternative_value``."""
+        if name not in self._parameters:
+            return alternative_value
+        return self._parameters[name]
+
+    def get_parameters(self, names):
+        """Return declared parameters."""
+        return [self.get_parameter(n) for n in names]
+
+    def set_parameters(self, parameters):
+        """Set declared parameters one by one; returns a SetParametersResult each."""
+        results = []
+        for parameter in parameters:
+            if parameter.name not in self._parameters:
+                raise ParameterNotDeclaredException(parameter.name)
+            result = self._run_parameter_callbacks([parameter])
+            if result.successful:
+                self._parameters[parameter.name] = parameter
+            results.append(result)
+        return results
+
+    def add_on_set_parameters_callback(self, callback):
+        """Call ``callback([Parameter])`` before parameters change; it may refuse."""
+        self._parameter_callbacks.insert(0, callback)
+
+    def remove_on_set_parameters_callback(self, callback):
+        """Remove a parameter callback."""
+        self._parameter_callbacks.remove(callback)
+
+    def _run_parameter_callbacks(self, parameters):
+        for callback in self._parameter_callbacks:
+            result = callback(parameters)
+            if not result.successful:
+                return result
+        return SetParametersResult(successful=True)
+
     def destroy_publisher(self, publisher):
         """Destroy a publisher of this node."""
         publisher.destroy()
@@ -407,3 +477,28 @@ class Node:
         if self in self.context._nodes:
             self.context._nodes.remove(self)
         return True
+
+
+class ParameterNotDeclaredException(Exception):
+    """A parameter that was not declared."""
+
+    def __init__(self, name):
+        """Name the parameter."""
+        super().__init__('Invalid access to undeclared parameter(s)', name)
+
+
+class ParameterAlreadyDeclaredException(Exception):
+    """A parameter declared twice."""
+
+    def __init__(self, name):
+        """Name the parameter."""
+        super().__init__('Parameter(s) already declared', name)
+
+
+class InvalidParameterValueException(Exception):
+    """A parameter value that a callback refused."""
+
+    def __init__(self, name, value, reason):
+        """Name the parameter, the value and the reason."""
+        super().__init__('Invalid parameter value ({}) for parameter. Reason: {}'.format(
+            value, reason), name)
