@@ -2,7 +2,7 @@
 # Licensed under the Apache License, Version 2.0
 
 """
-Executors: wait on the bus for the nodes' subscriptions and timers, then call back.
+Executors: wait for the nodes' subscriptions, services, clients and timers, then call back.
 
 A wait blocks the worker in Atomics.wait on the process' doorbell until a
 message arrives or the next timer is due: nothing polls. spin_once runs
