@@ -121,7 +121,22 @@ def check_python_requirements():
     return checks
 
 
+def check_pyodide():
+    """Check for the Pyodide npm package of Python nodes (optional)."""
+    from colcon_wasm.launch.errors import LaunchError
+    from colcon_wasm.launch.python_nodes import find_pyodide
+    from colcon_wasm.launch.python_nodes import install_hint
+    from colcon_wasm.launch.python_nodes import PYODIDE_VERSION
+    try:
+        folder = find_pyodide()
+    except LaunchError as e:
+        detail = str(e).split(': npm install')[0]
+        return Check('Pyodide', False, detail, install_hint(), required=False)
+    return Check('Pyodide', True, f'{PYODIDE_VERSION} in {folder} (Python nodes, '
+                 'docs/python.md)', required=False)
+
+
 def run_checks(emscripten_option=None):
     """Run every check, in the order printed."""
     return [check_emscripten(emscripten_option), check_node(),
-            check_chromium()] + check_python_requirements()
+            check_chromium(), check_pyodide()] + check_python_requirements()

@@ -25,6 +25,7 @@ DATA_FILES = (
     '0001-strerror_r-xsi-under-emscripten.patch',
     'colcon_wasm/_data/templates/glue/00-node-fetch.j2',
     'colcon_wasm/_data/packages/README.md',
+    'colcon_wasm/_data/packages/wasm_js/src/python/rclpy/__init__.py',
 )
 
 

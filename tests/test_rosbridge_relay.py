@@ -54,7 +54,11 @@ def test_two_tabs_share_one_graph(served):
                                           'greeting:=from_tab_one']),
         {'until': CONNECTED},
         {'wait': 'talker', 'text': 'NAME /param_talker TOPIC /chatter'},
-        {'sleep': 12000},
+        # the relay asks for the CDR form only: the other tab subscribes with cbor-raw
+        {'until': "(colconWasm.session.bridge.forms.get('/chatter') || {}).cdr "
+                  "&& JSON.stringify(colconWasm.session.bridge.forms.get('/chatter'))",
+         'save': 'forms', 'timeoutMs': 30000},
+        {'sleep': 8000},
     ]
     listener_tab = [
         {'sleep': 1500},
@@ -75,6 +79,54 @@ def test_two_tabs_share_one_graph(served):
              if 'HEARD from_tab_one' in line]
     assert heard == sorted(heard) and len(heard) >= 5, heard
     assert '/param_talker remote ' in second['saved']['remote'], second['saved']
+    assert json.loads(first['saved']['forms']) == {'json': False, 'cdr': True}, first['saved']
+
+
+def _with_page(served, tab, topic, scenario, timeout_ms=60000):
+    """Run a tab; once the relay lists ``topic``, run a roslibjs scenario against the relay."""
+    from served_page import explain_page
+    with ThreadPoolExecutor(1) as pool:
+        page = pool.submit(served.run, tab, timeout_ms)
+        node_script('rosbridge_roslib.mjs', 'ready', served.rosbridge_url, topic, timeout=90)
+        r = node_script('rosbridge_roslib.mjs', scenario, served.rosbridge_url)
+        result = page.result(timeout=200)
+    assert result['ok'], explain_page(result)
+    return r
+
+
+def test_roslibjs_throttle_rate_and_queue_length_through_the_relay(served):
+    """As against the Node.js server: throttle_rate drops, queue_length 1 keeps the newest."""
+    tab = [
+        dict(PROBE, start='talker', args=['param_talker', '--ros-args', '-r', '__node:=talker']),
+        {'until': CONNECTED},
+        {'wait': 'talker', 'text': 'NAME /talker TOPIC /chatter'},
+        {'sleep': 16000},
+    ]
+    r = _with_page(served, tab, '/chatter', 'throttle')
+    assert 25 <= r['all'] <= 35, r
+    assert 5 <= r['throttled'] <= 7, r
+    assert all(g >= 450 for g in r['throttledGaps']), r
+    assert 3 <= len(r['queued']) <= 5, r
+    assert all(g >= 900 for g in r['queuedGaps']), r
+    steps = [b - a for a, b in zip(r['queued'], r['queued'][1:])]
+    assert all(8 <= s <= 12 for s in steps), r
+
+
+def test_roslibjs_images_cbor_raw_and_cbor_through_the_relay(served):
+    """640x480 rgb8 images through a C++ node of a tab: cbor-raw (the page's CDR) and cbor."""
+    tab = [
+        dict(PROBE, start='pong', args=['bench_pong_image']),
+        {'until': CONNECTED},
+        {'wait': 'pong', 'text': '[bench_pong]: READY'},
+        {'sleep': 25000},
+    ]
+    r = _with_page(served, tab, '/bench/ping', 'images')
+    assert r['rawHasTime']
+    assert (r['rawHeight'], r['rawWidth']) == (480, 640)
+    assert r['rawBytes'] > 640 * 480 * 3
+    assert r['rawDataTail'] == r['expectedTail']
+    assert r['cborDataIsBytes'] and r['cborDataLength'] == 640 * 480 * 3
+    assert (r['cborEncoding'], r['cborFrame']) == ('rgb8', 'camera')
 
 
 def test_roslibjs_and_roslibpy_through_the_relay(served):
@@ -90,7 +142,7 @@ def test_roslibjs_and_roslibpy_through_the_relay(served):
     ]
     with ThreadPoolExecutor(1) as pool:
         page = pool.submit(served.run, tab, 90000)
-        time.sleep(4)
+        node_script('rosbridge_roslib.mjs', 'ready', served.rosbridge_url, '/chatter', timeout=90)
         js = node_script('rosbridge_roslib.mjs', 'basic', served.rosbridge_url)
         py = subprocess.run(
             [sys.executable, str(Path(__file__).resolve().parent / 'rosbridge_roslibpy.py'),
@@ -115,3 +167,27 @@ def test_roslibjs_and_roslibpy_through_the_relay(served):
     assert 'unknown operation "fly"' in by['unknown op']['msg']
     assert "field 'topic' is missing" in by['missing topic']['msg']
     assert bad['after'] and bad['fragmented']
+
+
+def test_json_publisher_to_cbor_raw_and_bad_binary_on_the_relay_port(served):
+    """On serve's port: JSON from a JSON-only publisher reaches cbor-raw, with one warning."""
+    from test_relay_units import Client
+    pub, sub = Client.connect(served.rosbridge_url), Client.connect(served.rosbridge_url)
+    for c in (pub, sub):
+        assert c.receive()['op'] == 'colcon_wasm_relay'
+        c.send({'op': 'set_level', 'level': 'warning'})
+    pub.send({'op': 'advertise', 'topic': '/plain', 'type': 'std_msgs/msg/String'})
+    sub.send({'op': 'subscribe', 'id': 'p1', 'topic': '/plain', 'type': 'std_msgs/msg/String',
+              'compression': 'cbor-raw'})
+    time.sleep(0.3)
+    for i in range(3):
+        pub.send({'op': 'publish', 'topic': '/plain', 'msg': {'data': 'json {}'.format(i)}})
+    seen = [sub.receive() for _ in range(4)]
+    assert [m['op'] for m in seen].count('status') == 1, seen
+    assert [m['msg']['data'] for m in seen if m['op'] == 'publish'] == [
+        'json 0', 'json 1', 'json 2'], seen
+    sub.send(b'\xff\x00', binary=True)
+    error = sub.until(lambda m: m.get('op') == 'status')
+    assert error['level'] == 'error' and 'not CBOR' in error['msg'], error
+    pub.send({'op': 'publish', 'topic': '/plain', 'msg': {'data': 'after'}})
+    assert sub.until(lambda m: m.get('op') == 'publish')['msg'] == {'data': 'after'}

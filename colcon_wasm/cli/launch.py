@@ -7,6 +7,7 @@ import sys
 
 from colcon_wasm.cli import CliExtensionPoint
 from colcon_wasm.launch import LaunchError
+from colcon_wasm.launch import LaunchPlan
 from colcon_wasm.launch.command import execute
 from colcon_wasm.launch.command import make_plan
 from colcon_wasm.launch.foxglove import add_foxglove_arguments
@@ -38,6 +39,14 @@ def add_runtime_arguments(parser):
     parser.add_argument(
         '--print-plan', action='store_true',
         help='Print each process with its arguments and exit without running it')
+    parser.add_argument(
+        '--python', action='append', default=[], metavar='FILE',
+        help='Run a Python script as a node (rclpy in Pyodide) next to the others '
+             '(repeatable; docs/python.md)')
+    parser.add_argument(
+        '--pyodide', metavar='DIR',
+        help='The Pyodide npm package folder for --python (default: $COLCON_WASM_PYODIDE, '
+             'else the one colcon-wasm doctor names)')
     add_rosbridge_arguments(parser)
     add_foxglove_arguments(parser)
 
@@ -52,13 +61,14 @@ class LaunchCommand(CliExtensionPoint):
             help="How long to wait for a container's load_node service, and for each "
                  'answer, before a composable node counts as failed (default: %(default)s)')
         parser.add_argument(
-            'what', nargs='+', metavar='ITEM',
+            'what', nargs='*', metavar='ITEM',
             help='A launch file (.launch.xml/.launch.yaml) with name:=value arguments, '
                  'PKG FILE for a launch file of a package, or PKG/EXE items')
 
     def main(self, *, args):  # noqa: D102
         try:
-            plan = make_plan(args.what, args.install_base)
+            plan = make_plan(args.what, args.install_base) if args.what or not args.python \
+                else LaunchPlan()
             bridges = bridge_plan(args, err=sys.stderr)
             bridges.update(foxglove_plan(args, err=sys.stderr))
         except (LaunchError, InstallSpaceError) as e:
@@ -67,4 +77,4 @@ class LaunchCommand(CliExtensionPoint):
         return execute(plan, install_base=args.install_base, duration=args.duration,
                        echo=args.echo, print_plan=args.print_plan,
                        command='colcon-wasm launch', load_timeout=args.load_timeout,
-                       bridges=bridges)
+                       bridges=bridges, python=args.python, pyodide=args.pyodide)

@@ -21,8 +21,9 @@ class RunCommand(CliExtensionPoint):
 
     def add_arguments(self, *, parser):  # noqa: D102
         add_runtime_arguments(parser)
-        parser.add_argument('package', metavar='PKG', help='The package name')
-        parser.add_argument('executable', metavar='EXE', help='The executable name')
+        parser.add_argument('package', metavar='PKG', nargs='?',
+                            help='The package name (none with --python FILE only)')
+        parser.add_argument('executable', metavar='EXE', nargs='?', help='The executable name')
         parser.add_argument(
             'arguments', nargs=argparse.REMAINDER, metavar='ARGS',
             help='Arguments of the executable, e.g. --ros-args -r chatter:=news -p rate:=5 '
@@ -30,7 +31,15 @@ class RunCommand(CliExtensionPoint):
                  'before PKG)')
 
     def main(self, *, args):  # noqa: D102
-        plan = LaunchPlan([NodeProcess(args.package, args.executable, arguments=args.arguments)])
+        if args.package is None and args.python:
+            plan = LaunchPlan()
+        elif args.executable is None:
+            print('colcon-wasm run: name PKG EXE (or a Python node with --python FILE, '
+                  'given before PKG)', file=sys.stderr)
+            return 1
+        else:
+            plan = LaunchPlan([NodeProcess(args.package, args.executable,
+                                           arguments=args.arguments)])
         try:
             bridges = bridge_plan(args, err=sys.stderr)
             bridges.update(foxglove_plan(args, err=sys.stderr))
@@ -39,4 +48,4 @@ class RunCommand(CliExtensionPoint):
             return 1
         return execute(plan, install_base=args.install_base, duration=args.duration,
                        echo=args.echo, print_plan=args.print_plan, command='colcon-wasm run',
-                       stdin=True, bridges=bridges)
+                       stdin=True, bridges=bridges, python=args.python, pyodide=args.pyodide)

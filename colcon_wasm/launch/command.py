@@ -52,9 +52,21 @@ def make_plan(values, install_base):
     return plan_items(others)
 
 
+def _add_python_nodes(description, python, install_space, bases, pyodide, print_plan):
+    from colcon_wasm.launch.install_view import ament_prefixes
+    from colcon_wasm.launch.install_view import view_bases
+    from colcon_wasm.launch.python_nodes import find_pyodide
+    from colcon_wasm.launch.python_nodes import python_processes
+    bases = view_bases(install_space) if bases is None else [Path(b) for b in bases]
+    processes = description['processes']
+    processes += python_processes(python, ament_prefixes(bases), first_index=len(processes) + 1)
+    if not print_plan:
+        description['pyodide'] = str(find_pyodide(pyodide))
+
+
 def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, command,
             out=None, err=None, stdin=False, load_timeout=DEFAULT_LOAD_TIMEOUT,
-            bases=None, bridges=None):
+            bases=None, bridges=None, python=(), pyodide=None):
     """
     Resolve a plan against the install space and run it in Node.js (or print it).
 
@@ -65,6 +77,8 @@ def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, com
     ``bridges``: the rosbridge server and client entries of the plan
     (``colcon_wasm.launch.rosbridge.bridge_plan``) and the Foxglove server's
     (``colcon_wasm.launch.foxglove.foxglove_plan``).
+    ``python``: Python scripts run as nodes next to the plan's processes, with
+    the Pyodide folder ``pyodide`` (default: ``find_pyodide``'s lookup).
 
     :returns: the exit status (1 for bad input, else the Node host's)
     """
@@ -75,6 +89,8 @@ def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, com
         description = host_plan(plan, install_space, duration=duration, echo=echo,
                                 stdin=stdin, load_timeout=load_timeout, bases=bases)
         description.update(bridges or {}, command=command)
+        if python:
+            _add_python_nodes(description, python, install_space, bases, pyodide, print_plan)
     except (LaunchError, InstallSpaceError) as e:
         print('{}: {}'.format(command, e), file=err)
         return 1

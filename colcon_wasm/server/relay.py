@@ -10,9 +10,16 @@ routes between those clients, and the rosbridge clients (roslibjs,
 roslibpy) that connect to the ``--rosbridge`` port, as one graph:
 
 * a ``publish`` goes to every other client subscribed to the topic (never
-  back to its sender), as JSON (the relay has no bus and no CDR codec, so
-  ``cbor``/``cbor-raw``/``png`` subscriptions get JSON, with a warning);
-  ``throttle_rate`` is applied, ``ttl`` passed on;
+  back to its sender), in the form the subscription asks for: CDR bytes
+  (a CBOR publish of a colcon-wasm client) to ``cbor-raw`` subscribers as
+  rosbridge's cbor-raw ``publish``; JSON to ``none``, ``png`` (rosbridge's
+  png op) and ``cbor`` (built from the JSON with the type descriptions,
+  relay_forms.py) subscribers, and to ``cbor-raw`` ones when its publisher
+  sends no CDR (a third-party client; one warning per subscription).
+  colcon-wasm publishers are told which forms the others need
+  (``colcon_wasm_forms``). ``throttle_rate``, ``queue_length`` and
+  ``fragment_size`` as the Node.js server applies them (relay_topics.py);
+  ``ttl`` passed on;
 * ``call_service`` goes to the client that advertised the service, with an
   id of the relay's; its ``service_response`` goes back to the caller with
   the caller's id; no answer within the call's ``timeout`` (default 10 s),
@@ -24,11 +31,12 @@ roslibpy) that connect to the ``--rosbridge`` port, as one graph:
   subscribed and (colcon-wasm clients) reported of their nodes
   (``colcon_wasm_graph``), and from the install space's type descriptions.
 
-Bad input gets a ``status`` error naming the field, with the request's id;
-a client that stops reading is cut off at ``max_queued_bytes``
-(websocket.py), never blocking the others. The relay greets each client with
-``{"op": "colcon_wasm_relay"}`` so that colcon-wasm clients switch to JSON
-and report their nodes.
+Requests are JSON text or CBOR (binary). Bad input gets a ``status`` error
+naming the field, with the request's id; a client that stops reading is cut
+off at ``max_queued_bytes`` (websocket.py), never blocking the others. The
+relay greets each client with ``{"op": "colcon_wasm_relay", "version": 2}``
+so that colcon-wasm clients report their nodes and the forms they can send
+(``colcon_wasm_graph``); see docs/bridge.md, "The relay".
 """
 
 import itertools
@@ -38,6 +46,12 @@ import threading
 import time
 
 from colcon_core.logging import colcon_logger
+from colcon_wasm.server.relay_forms import decode_request
+from colcon_wasm.server.relay_forms import Forms
+from colcon_wasm.server.relay_forms import jsonable
+from colcon_wasm.server.relay_topics import Message
+from colcon_wasm.server.relay_topics import Subscription
+from colcon_wasm.server.relay_topics import Topics
 from colcon_wasm.server.websocket import Connection
 
 logger = colcon_logger.getChild(__name__)
@@ -83,6 +97,13 @@ def _name(msg, field):
     return full
 
 
+def _raw_publish(msg):
+    """Whether a (CBOR) request publishes CDR bytes: ``msg`` is ``{bytes, secs, nsecs}``."""
+    m = msg.get('msg')
+    return msg.get('op') == 'publish' and isinstance(m, dict) and isinstance(
+        m.get('bytes'), (bytes, bytearray)) and set(m) <= {'bytes', 'secs', 'nsecs'}
+
+
 def _normalize(type_name, kind='msg'):
     parts = type_name.strip().split('/')
     return '{}/{}/{}'.format(parts[0], kind, parts[1]) if len(parts) == 2 else type_name.strip()
@@ -97,14 +118,17 @@ class Peer:
         self.number = number
         self.where = where
         self.level = 'error'
-        self.subscriptions = {}   # topic -> {'type', 'throttle', 'last', 'ids'}
+        self.subscriptions = {}   # topic -> relay_topics.Subscription
         self.publications = {}    # topic -> type
         self.nodes = []
         self.fragments = {}
+        self.version = 0          # a colcon-wasm client's (colcon_wasm_graph), else 0
+        self.forms = {}           # topic -> (json, cdr) last asked of this colcon-wasm publisher
+        self.draining = set()     # subscriptions waiting for the socket to drain
 
     def send(self, obj):
-        """Send a protocol message."""
-        return self.conn.send(obj if isinstance(obj, str) else json.dumps(obj))
+        """Send a protocol message (a dict as JSON text; str and bytes as they are)."""
+        return self.conn.send(obj if isinstance(obj, (str, bytes)) else json.dumps(obj))
 
     def status(self, level, text, rid=None):
         """Send a status message when the client's level shows it."""
@@ -137,9 +161,12 @@ class Relay:
         for doc in types:
             self.messages.update(doc.get('messages', {}))
             self.service_types.update(doc.get('services', {}))
+        self.forms = Forms(self.messages)
         self.max_message_bytes = max_message_bytes
         self.max_queued_bytes = max_queued_bytes
         self.call_timeout = call_timeout
+        self.stats = {'dropped': 0, 'expired': 0}
+        self.topics = Topics(self)
         self._numbers = itertools.count(1)
         self._ids = itertools.count(1)
         self._stop = threading.Event()
@@ -163,11 +190,11 @@ class Relay:
 
         conn = Connection(sock, max_message_bytes=self.max_message_bytes,
                           max_queued_bytes=self.max_queued_bytes, on_oversize=oversize,
-                          on_cut_off=cut_off)
+                          on_cut_off=cut_off, on_drain=lambda: self.topics.drained(peer))
         peer = Peer(self, conn, next(self._numbers), where)
         with self.lock:
             self.peers.add(peer)
-        peer.send({'op': 'colcon_wasm_relay', 'version': 1})
+        peer.send({'op': 'colcon_wasm_relay', 'version': 2})
         try:
             conn.run(lambda data, binary: self.receive(peer, data, binary))
         finally:
@@ -176,6 +203,10 @@ class Relay:
     def _leave(self, peer):
         with self.lock:
             self.peers.discard(peer)
+            for topic, sub in list(peer.subscriptions.items()):
+                self.topics.close(sub)
+                del peer.subscriptions[topic]
+                self._update_forms(topic)
             for table in (self.services, self.actions):
                 for name in [n for n, (p, _) in table.items() if p is peer]:
                     del table[name]
@@ -189,6 +220,7 @@ class Relay:
     def close(self):
         """Stop the relay and close every client."""
         self._stop.set()
+        self.topics.scheduler.stop()
         with self.lock:
             peers = list(self.peers)
         for peer in peers:
@@ -220,17 +252,23 @@ class Relay:
     # ------------------------------------------------------------ requests
 
     def receive(self, peer, data, binary):
-        """Handle one message of a client."""
+        """Handle one message of a client: JSON text, or CBOR (binary)."""
         if binary:
-            peer.status('error', 'the relay reads rosbridge requests as JSON text, not binary')
-            return
-        try:
-            msg = json.loads(data)
-        except ValueError as e:
-            match = ID_IN_TEXT.search(data[:4096])
-            peer.status('error', 'malformed JSON: {}; the request was dropped'.format(e),
-                        json.loads(match.group(1)) if match else None)
-            return
+            try:
+                msg = decode_request(data)
+                if isinstance(msg, dict) and not _raw_publish(msg):
+                    msg = jsonable(msg)
+            except ValueError as e:
+                peer.status('error', '{}; the request was dropped'.format(e))
+                return
+        else:
+            try:
+                msg = json.loads(data)
+            except ValueError as e:
+                match = ID_IN_TEXT.search(data[:4096])
+                peer.status('error', 'malformed JSON: {}; the request was dropped'.format(e),
+                            json.loads(match.group(1)) if match else None)
+                return
         if not isinstance(msg, dict) or not isinstance(msg.get('op'), str):
             peer.status('error', "a rosbridge request must be a JSON object with an 'op' field",
                         msg.get('id') if isinstance(msg, dict) else None)
@@ -271,14 +309,37 @@ class Relay:
         nodes = msg.get('nodes')
         if isinstance(nodes, list):
             peer.nodes = [n for n in nodes if isinstance(n, str)]
+        version = msg.get('version')
+        if isinstance(version, int) and version != peer.version:
+            peer.version = version
+            for topic in list(peer.publications):
+                self._update_forms(topic)
+
+    def _update_forms(self, topic):
+        """
+        Tell the colcon-wasm publishers of ``topic`` which forms the others' subscriptions need.
+
+        ``{"op": "colcon_wasm_forms", "topic", "json", "cdr"}``: JSON for
+        none/png/cbor subscribers, CDR for cbor-raw ones; sent when it changes.
+        """
+        subs = [(p, p.subscriptions[topic]) for p in self.peers if topic in p.subscriptions]
+        for p in self.peers:
+            if p.version < 2 or topic not in p.publications:
+                continue
+            kinds = {s.compression for q, s in subs if q is not p}
+            want = (bool(kinds - {'cbor-raw'}), 'cbor-raw' in kinds)
+            if p.forms.get(topic) != want:
+                p.forms[topic] = want
+                p.send({'op': 'colcon_wasm_forms', 'topic': topic, 'json': want[0],
+                        'cdr': want[1]})
 
     def _known_type(self, topic):
         for p in self.peers:
             if topic in p.publications:
                 return p.publications[topic]
             sub = p.subscriptions.get(topic)
-            if sub and sub['type']:
-                return sub['type']
+            if sub and sub.type:
+                return sub.type
         return None
 
     def _op_advertise(self, peer, msg):
@@ -289,37 +350,54 @@ class Relay:
         if known and known != type_name:
             raise RequestError("advertise: field 'type' is {}, but topic '{}' has type {}".format(
                 type_name, topic, known))
-        peer.publications[topic] = type_name
+        if topic not in peer.publications:
+            peer.publications[topic] = type_name
+            self._update_forms(topic)
 
     def _op_unadvertise(self, peer, msg):
-        peer.publications.pop(_name(msg, 'topic'), None)
+        topic = _name(msg, 'topic')
+        peer.publications.pop(topic, None)
+        peer.forms.pop(topic, None)
 
     def _op_subscribe(self, peer, msg):
         topic = _name(msg, 'topic')
         given = _field(msg, 'type', 'str')
         type_name = _normalize(given) if given else self._known_type(topic)
+        if given:
+            self._check_type('subscribe', 'type', type_name)
         compression = _field(msg, 'compression', 'str') or 'none'
         if compression not in ('none', 'png', 'cbor', 'cbor-raw'):
             raise RequestError("subscribe: field 'compression' must be one of none, png, cbor, "
-                               'cbor-raw')
-        if compression != 'none':
-            peer.status('warning', 'the relay of colcon-wasm serve forwards JSON: {} is sent as '
-                                   'JSON (compression none)'.format(topic), msg.get('id'))
-        sub = peer.subscriptions.setdefault(topic, {'type': type_name, 'throttle': 0, 'last': 0,
-                                                    'ids': set()})
-        sub['ids'].add(msg.get('id'))
-        sub['throttle'] = (_field(msg, 'throttle_rate', 'int') or 0) / 1000.0
-        if type_name and not sub['type']:
-            sub['type'] = type_name
+                               "cbor-raw, got '{}'".format(compression))
+        request = {'compression': compression}
+        for key in ('throttle_rate', 'queue_length', 'fragment_size'):
+            request[key.split('_rate')[0]] = max(0, _field(msg, key, 'int') or 0)
+        sub = peer.subscriptions.get(topic)
+        if sub is None:
+            sub = peer.subscriptions[topic] = Subscription(peer, topic, type_name)
+        elif type_name and sub.type and type_name != sub.type:
+            raise RequestError("subscribe: field 'type' is {}, but this client is subscribed to "
+                               "'{}' as {}".format(type_name, topic, sub.type))
+        sub.requests[msg.get('id')] = request
+        self.stats['dropped'] += sub.update()
+        if type_name and not sub.type:
+            sub.type = type_name
+        if not sub.queue_length:
+            self.topics.flush(sub, everything=True)
+        self._update_forms(topic)
 
     def _op_unsubscribe(self, peer, msg):
         topic = _name(msg, 'topic')
         sub = peer.subscriptions.get(topic)
         if sub is None:
             return
-        sub['ids'].discard(msg.get('id'))
-        if msg.get('id') is None or not sub['ids']:
+        sub.requests.pop(msg.get('id'), None)
+        if msg.get('id') is None or not sub.requests:
             del peer.subscriptions[topic]
+            self.topics.close(sub)
+        else:
+            self.stats['dropped'] += sub.update()
+        self._update_forms(topic)
 
     def _op_publish(self, peer, msg):
         topic = _name(msg, 'topic')
@@ -334,22 +412,33 @@ class Relay:
                 raise RequestError("publish: cannot infer the type of topic '{}': advertise it "
                                    'with a type first'.format(topic))
             peer.publications[topic] = known
-        self._check('publish', peer.publications[topic], msg['msg'])
-        out = {'op': 'publish', 'topic': topic, 'msg': msg['msg']}
-        if isinstance(msg.get('ttl'), (int, float)):
-            if msg['ttl'] <= 0:
-                return
-            out['ttl'] = msg['ttl']
-        text = json.dumps(out)
-        now = time.monotonic()
+            self._update_forms(topic)
+        type_name = peer.publications[topic]
+        ttl = msg.get('ttl')
+        if not isinstance(ttl, (int, float)) or isinstance(ttl, bool):
+            ttl = None
+        elif ttl <= 0:
+            self.stats['expired'] += 1
+            return
+        if _raw_publish(msg):
+            raw = msg['msg']
+            m = Message(topic, type_name, cdr=bytes(raw['bytes']), secs=raw.get('secs'),
+                        nsecs=raw.get('nsecs'), ttl=ttl)
+        else:
+            self._check('publish', type_name, msg['msg'])
+            m = Message(topic, type_name, json_msg=msg['msg'], ttl=ttl)
+        # JSON goes to cbor-raw subscribers only when its publisher sends no CDR form
+        gives_cdr = peer.forms.get(topic, (True, False))[1]
         for other in self.peers:
             sub = other.subscriptions.get(topic)
             if other is peer or sub is None:
                 continue
-            if sub['throttle'] and now - sub['last'] < sub['throttle']:
+            if m.cdr is not None:
+                if sub.compression != 'cbor-raw':
+                    continue
+            elif sub.compression == 'cbor-raw' and gives_cdr:
                 continue
-            sub['last'] = now
-            other.send(text)
+            self.topics.offer(sub, m)
 
     def _provider(self, table, name, what):
         entry = table.get(name)
@@ -531,8 +620,8 @@ class Relay:
             for topic, type_name in p.publications.items():
                 topics.setdefault(topic, type_name)
             for topic, sub in p.subscriptions.items():
-                if sub['type']:
-                    topics.setdefault(topic, sub['type'])
+                if sub.type:
+                    topics.setdefault(topic, sub.type)
         return dict(sorted(topics.items()))
 
     def _rosapi(self, name, args):

@@ -65,14 +65,16 @@ class Connection:
     """One WebSocket peer: ``run(on_message)`` reads, ``send()`` queues."""
 
     def __init__(self, sock, *, max_message_bytes, max_queued_bytes, on_oversize=None,
-                 on_cut_off=None):
-        """Wrap a socket whose handshake is done."""
+                 on_cut_off=None, on_drain=None):
+        """Wrap a socket whose handshake is done; ``on_drain()``: see ``watch_drain``."""
         self.sock = sock
         self.max_message_bytes = max_message_bytes
         self.max_queued_bytes = max_queued_bytes
         self.on_oversize = on_oversize
         self.on_cut_off = on_cut_off
+        self.on_drain = on_drain
         self.queued_bytes = 0
+        self._drain_level = None
         self.closed = False
         self._lock = threading.Lock()
         self._queue = queue.Queue()
@@ -167,6 +169,18 @@ class Connection:
             frame = encode_frame(BINARY, bytes(data))
         return self._enqueue(frame)
 
+    def watch_drain(self, level):
+        """
+        Call ``on_drain()`` (from the writer thread) once fewer than ``level`` bytes wait.
+
+        Return False (and call nothing) when fewer wait already.
+        """
+        with self._lock:
+            if self.queued_bytes < level or self.closed:
+                return False
+            self._drain_level = level
+            return True
+
     def _enqueue(self, frame):
         with self._lock:
             if self.closed:
@@ -195,6 +209,11 @@ class Connection:
                 break
             with self._lock:
                 self.queued_bytes -= len(frame)
+                drained = self._drain_level is not None and self.queued_bytes < self._drain_level
+                if drained:
+                    self._drain_level = None
+            if drained and self.on_drain:
+                self.on_drain()
         self.closed = True
         try:
             self.sock.shutdown(2)

@@ -40,6 +40,21 @@ function collect(ros, options, count, ms) {
 }
 
 const scenarios = {
+  /** Wait (up to 60 s) until the server lists a topic (argv: TOPIC): the nodes behind it are up. */
+  async ready() {
+    const [topic] = process.argv.slice(4);
+    const ros = await connect();
+    const deadline = Date.now() + 60000;
+    for (;;) {
+      const { topics } = await cb((ok, fail) => ros.getTopics(ok, fail));
+      if (topics.includes(topic)) break;
+      if (Date.now() > deadline) throw new Error(`${topic} was not listed within 60 s (topics: ${topics.join(', ')})`);
+      await sleep(250);
+    }
+    ros.close();
+    return { topic };
+  },
+
   /** rosapi, typed fields of a C++ publisher, publishing into a C++ listener, calling a C++ service. */
   async basic() {
     const ros = await connect();

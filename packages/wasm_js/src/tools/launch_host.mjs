@@ -75,6 +75,23 @@ function echoTopic(runtime, tools, registry, topic, stopping) {
   tryStart();
 }
 
+/**
+ * spawn() of a Python node (`python`: its script): the runtime's python/spawn.mjs
+ * (docs/python.md), with the plan's Pyodide folder and type descriptions.
+ */
+function spawnPythonNode(runtimeUrl, runtime, proc, plan) {
+  return async (spec) => {
+    let spawnPython;
+    try {
+      ({ spawnPython } = await import(new URL('python/spawn.mjs', runtimeUrl).href));
+    } catch (e) {
+      throw new Error(`the wasm_js runtime ${runtimeUrl} has no Python nodes (python/spawn.mjs): rebuild it `
+        + "with 'colcon build --wasm --packages-select wasm_js'");
+    }
+    return spawnPython(runtime, { ...spec, file: proc.python, pyodideDir: plan.pyodide, types: plan.types || [] });
+  };
+}
+
 async function main() {
   const plan = JSON.parse(process.argv[2]);
   const runtimeUrl = plan.runtime || new URL('../runtime.mjs', import.meta.url).href;
@@ -140,7 +157,7 @@ async function main() {
       checkDone();
     };
     try {
-      const handle = await runtime.spawn({
+      const handle = await (proc.python ? spawnPythonNode(runtimeUrl, runtime, proc, plan) : (spec) => runtime.spawn(spec))({
         url: pathToFileURL(proc.js).href,
         args: proc.args,
         env: proc.env,

@@ -9,7 +9,9 @@
  * local graph as it changes:
  *
  *  - a topic local nodes publish: advertised remotely, each message sent
- *    as `publish` (JSON, with `ttl` when the publisher has a lifespan);
+ *    as `publish` (JSON, with `ttl` when the publisher has a lifespan; to
+ *    serve's relay in the forms it asks for with `colcon_wasm_forms`: the
+ *    CDR bytes as a CBOR publish, JSON, or both);
  *  - a topic local nodes subscribe to: subscribed remotely with cbor-raw
  *    compression, each message's CDR bytes published locally unchanged;
  *  - a service local nodes serve: advertised remotely, remote calls are
@@ -106,6 +108,8 @@ export class RosbridgeClient {
     this.onChange = onChange || (() => {});
     this.wantRemoteGraph = remoteGraph;
     this.relay = false; // the server is serve's relay (it greets with colcon_wasm_relay)
+    this.relayVersion = 0; // 2: it forwards CDR (cbor-raw) and asks for forms (colcon_wasm_forms)
+    this.forms = new Map(); // topic -> {json, cdr}: what the relay's subscribers need of our messages
     this._reported = null;
     this.state = 'connecting';
     this.remote = { nodes: [], topics: [], services: [] };
@@ -170,6 +174,7 @@ export class RosbridgeClient {
     this.state = 'connected';
     this.log('info', `${again ? 'reconnected' : 'connected'} to ${this.displayUrl}`);
     this._reported = null;
+    this.forms.clear();
     this._send({ op: 'set_level', level: 'warning' });
     for (const b of [...this.out.values(), ...this.draining]) this._advertise(b);
     for (const b of this.in.values()) this._subscribe(b);
@@ -255,7 +260,8 @@ export class RosbridgeClient {
       case 'action_result': this._proxiedResult(msg); break;
       case 'status': this.log(msg.level === 'error' ? 'error' : 'warning', `${this.displayUrl}: ${msg.msg}`); break;
       case 'fragment': this._fragment(msg); break;
-      case 'colcon_wasm_relay': this._relayMode(); break;
+      case 'colcon_wasm_relay': this._relayMode(msg); break;
+      case 'colcon_wasm_forms': this._relayForms(msg); break;
       default: break;
     }
   }

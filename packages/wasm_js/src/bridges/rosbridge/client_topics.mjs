@@ -13,10 +13,32 @@
  */
 
 import { gidHex } from './bus_link.mjs';
+import { CborWriter } from './cbor.mjs';
 
 /** The nodes of the bridges themselves: what they do is not bridged again. */
 export const BRIDGE_NODES = new Set(['/rosbridge_client', '/rosbridge_websocket']);
 const IN_QOS = { history: 'keep_last', depth: 10, reliability: 'reliable', durability: 'transient_local' };
+/** What a publish carries until the relay says otherwise (and always for other servers). */
+const JSON_ONLY = Object.freeze({ json: true, cdr: false });
+
+/**
+ * The CBOR bytes of a publish of CDR bytes, `{op, topic, msg: {bytes, secs,
+ * nsecs}, ttl?}` (cbor-raw's form, which rosbridge servers and serve's relay take).
+ */
+export function cdrPublish(topic, bytes, timeMs, ttl) {
+  const w = new CborWriter(bytes.length + 96);
+  const secs = Math.floor(timeMs / 1000);
+  w.map(ttl === undefined ? 3 : 4);
+  w.string('op'); w.string('publish');
+  w.string('topic'); w.string(topic);
+  w.string('msg');
+  w.map(3);
+  w.string('bytes'); w.byteString(bytes);
+  w.string('secs'); w.int(secs);
+  w.string('nsecs'); w.int(Math.round((timeMs - secs * 1000) * 1e6));
+  if (ttl !== undefined) { w.string('ttl'); w.int(ttl); }
+  return w.result();
+}
 
 /** A cheap fingerprint of bytes (FNV-1a over length and every byte). */
 export function fingerprint(bytes) {
@@ -121,6 +143,12 @@ export class ClientTopics {
       this.counters.expired++;
       return true;
     }
+    // serve's relay says which forms its other clients need: CDR (cbor-raw), JSON, both or none
+    const forms = (this.relayVersion >= 2 && this.forms.get(b.topic)) || JSON_ONLY;
+    const ttl = entry.expires === Infinity ? undefined : Math.max(1, Math.round(entry.expires - Date.now()));
+    let sent = true;
+    if (forms.cdr) sent = this._sendRaw(cdrPublish(b.topic, entry.data, entry.time, ttl));
+    if (!forms.json) return sent;
     let json;
     try {
       json = this.converter.jsonWriter(b.type)(this.registry.decode(b.type, entry.data));
@@ -128,9 +156,9 @@ export class ClientTopics {
       this.log('error', `cannot bridge a message of ${b.topic}: ${e.message}`);
       return true;
     }
-    if (this.in.has(b.topic)) this._expectEcho(b, entry.data);
-    const ttl = entry.expires === Infinity ? '' : `,"ttl":${Math.max(1, Math.round(entry.expires - Date.now()))}`;
-    return this._sendRaw(`{"op":"publish","topic":${JSON.stringify(b.topic)},"msg":${json}${ttl}}`);
+    if (this.in.has(b.topic) && !this.relay) this._expectEcho(b, entry.data); // the relay never echoes
+    const ttlText = ttl === undefined ? '' : `,"ttl":${ttl}`;
+    return this._sendRaw(`{"op":"publish","topic":${JSON.stringify(b.topic)},"msg":${json}${ttlText}}`) && sent;
   }
 
   _expectEcho(b, data) {
@@ -205,20 +233,32 @@ export class ClientTopics {
   }
 
   _subscribe(b) {
-    // CDR bytes as they are, unless the server is serve's relay (JSON only)
-    this._send({ op: 'subscribe', id: `bridge:${b.topic}`, topic: b.topic, type: b.type, compression: this.relay ? 'none' : 'cbor-raw' });
+    // CDR bytes as they are, unless the server is an older relay of serve (version 1: JSON only);
+    // serve's relay of version 2 sends cbor-raw from colcon-wasm publishers and JSON from others
+    const jsonOnly = this.relay && this.relayVersion < 2;
+    this._send({ op: 'subscribe', id: `bridge:${b.topic}`, topic: b.topic, type: b.type, compression: jsonOnly ? 'none' : 'cbor-raw' });
   }
 
   /**
    * The server is `colcon-wasm serve --rosbridge`'s relay (it said so): it
-   * forwards JSON, and shows the nodes each client reports in its rosapi.
+   * shows the nodes each client reports in its rosapi; from version 2 it
+   * forwards CDR between colcon-wasm clients and tells each publisher which
+   * forms its subscribers need (`colcon_wasm_forms`); version 1 forwards JSON.
    */
-  _relayMode() {
-    if (this.relay) return;
+  _relayMode(msg) {
+    const version = Number.isInteger(msg && msg.version) ? msg.version : 1;
+    const wasJsonOnly = this.relay && this.relayVersion < 2;
     this.relay = true;
-    for (const b of this.in.values()) this._subscribe(b);
-    this._reported = null;
+    this.relayVersion = version;
+    if ((version < 2) !== wasJsonOnly) for (const b of this.in.values()) this._subscribe(b);
+    this._reported = null; // on every greeting: a reconnected relay has forgotten our nodes
     this._reportGraph();
+  }
+
+  /** `{"op": "colcon_wasm_forms", "topic", "json", "cdr"}`: what the relay needs of a topic we publish. */
+  _relayForms(msg) {
+    if (typeof msg.topic !== 'string') return;
+    this.forms.set(msg.topic, { json: msg.json === true, cdr: msg.cdr === true });
   }
 
   _reportGraph() {
@@ -228,7 +268,7 @@ export class ClientTopics {
     const key = nodes.join('\n');
     if (key === this._reported) return;
     this._reported = key;
-    this._send({ op: 'colcon_wasm_graph', nodes });
+    this._send({ op: 'colcon_wasm_graph', nodes, version: 2 });
   }
 
   _remotePublish(msg) {

@@ -1,0 +1,95 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""
+Python nodes of ``run --python`` and ``launch --python``: scripts that Pyodide runs.
+
+Each becomes a process of the plan with ``python`` (the script) instead of
+an executable; the Node host starts it with the runtime's
+``python/spawn.mjs``. Pyodide is not part of the wheel: it is the npm
+package ``pyodide`` at :data:`PYODIDE_VERSION`, found by
+:func:`find_pyodide` (``colcon-wasm doctor`` says how to install it).
+See docs/python.md.
+"""
+
+import json
+import os
+from pathlib import Path
+
+from colcon_wasm.launch.errors import LaunchError
+from colcon_wasm.launch.install_view import program_environment
+
+#: The npm release of ``pyodide`` the runtime is tested with (python/spawn.mjs pins it too).
+PYODIDE_VERSION = '314.0.8'
+#: Names the folder of the npm package (the one holding ``pyodide.mjs``).
+PYODIDE_ENVIRONMENT_VARIABLE = 'COLCON_WASM_PYODIDE'
+#: The files a Python node loads from that folder.
+PYODIDE_FILES = ('pyodide.mjs', 'pyodide.asm.mjs', 'pyodide.asm.wasm', 'python_stdlib.zip',
+                 'pyodide-lock.json')
+
+
+def default_pyodide_prefix():
+    """Return where ``doctor`` tells users to install Pyodide (under the cache folder)."""
+    cache = Path(os.environ.get('COLCON_WASM_CACHE', Path.home() / '.cache' / 'colcon-wasm'))
+    return cache / 'pyodide'
+
+
+def install_hint():
+    """Return the commands that install Pyodide where it is looked for."""
+    prefix = default_pyodide_prefix()
+    text = ("npm install --prefix '{}' pyodide@{} (or install it elsewhere and set {} to "
+            'its node_modules/pyodide folder)')
+    return text.format(prefix, PYODIDE_VERSION, PYODIDE_ENVIRONMENT_VARIABLE)
+
+
+def find_pyodide(option=None):
+    """
+    Find the Pyodide npm package: ``option``, then $COLCON_WASM_PYODIDE, then the cache.
+
+    :returns: the folder holding ``pyodide.mjs``
+    :raises LaunchError: naming what is missing or the wrong version, and the fix
+    """
+    if option:
+        candidates = [(Path(option), '--pyodide')]
+    elif os.environ.get(PYODIDE_ENVIRONMENT_VARIABLE):
+        candidates = [(Path(os.environ[PYODIDE_ENVIRONMENT_VARIABLE]),
+                       '$' + PYODIDE_ENVIRONMENT_VARIABLE)]
+    else:
+        candidates = [(default_pyodide_prefix() / 'node_modules' / 'pyodide', 'default')]
+    folder, source = candidates[0]
+    folder = folder.expanduser().resolve()
+    missing = [f for f in PYODIDE_FILES if not (folder / f).is_file()]
+    if missing:
+        raise LaunchError("Python nodes need Pyodide {}, and '{}' ({}) lacks {}: {}".format(
+            PYODIDE_VERSION, folder, source, ', '.join(missing), install_hint()))
+    try:
+        version = json.loads((folder / 'package.json').read_text(encoding='utf-8'))['version']
+    except (OSError, ValueError, KeyError):
+        version = 'unknown'
+    if version != PYODIDE_VERSION:
+        raise LaunchError('Incorrect Pyodide version {} in {}. Need Pyodide version {}: {}'.format(
+            version, folder, PYODIDE_VERSION, install_hint()))
+    return folder
+
+
+def python_processes(files, prefixes, *, first_index):
+    """
+    Describe the Python nodes for the Node host, labelled ``<stem>-N`` after the others.
+
+    :param files: the scripts
+    :param prefixes: the ``AMENT_PREFIX_PATH`` entries the processes see
+    :raises LaunchError: for a script that is not a file
+    """
+    entries = []
+    for index, file in enumerate(files, start=first_index):
+        path = Path(file).resolve()
+        if not path.is_file():
+            raise LaunchError("Python node '{}' does not exist".format(file))
+        entries.append({
+            'label': '{}-{}'.format(path.stem, index),
+            'python': str(path),
+            'js': str(path),
+            'args': [],
+            'env': program_environment({}, prefixes),
+        })
+    return entries

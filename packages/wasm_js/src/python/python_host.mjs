@@ -1,0 +1,273 @@
+// Copyright 2026 The colcon-wasm authors. Licensed under the Apache License 2.0.
+
+/**
+ * The worker of a Python node (Node.js worker_threads): loads Pyodide from
+ * its npm package folder, attaches a BusClient to the Runtime's bus, gives
+ * Python the module `_colcon_wasm_bus` (below: nodes, endpoints, publish,
+ * take and a blocking wait, with CDR through cdr.mjs's TypeRegistry), copies
+ * the `rclpy` package next to this module into Pyodide's file system and runs
+ * the script as `__main__`. It speaks the host protocol (protocol.mjs
+ * FromHost), so the Runtime treats it as any other bus process.
+ *
+ * A wait blocks this thread in Atomics.wait on the process' doorbell
+ * (BusClient.wait), as the C++ nodes' waits do: no polling.
+ *
+ * @module python/python_host
+ */
+
+import fs from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath, pathToFileURL } from 'node:url';
+import { parentPort } from 'node:worker_threads';
+
+import {
+  BusClient, KIND_CLIENT, KIND_PUBLISHER, KIND_SERVICE, KIND_SUBSCRIPTION, TakeMode, WAIT_ITEM_WORDS, WaitKind,
+} from '../bus_client.mjs';
+import { TypeRegistry } from '../cdr.mjs';
+import { H } from '../layout.mjs';
+import { FromHost } from '../protocol.mjs';
+
+/** Where the rclpy package lives inside Pyodide's file system. */
+const PYTHON_ROOT = '/colcon_wasm/python';
+const HERE = path.dirname(fileURLToPath(import.meta.url));
+
+/**
+ * std_msgs/msg/String when the install space has no std_msgs types.json
+ * (e.g. a workspace without Humble): its definition is `string data`.
+ */
+const STD_MSGS_STRING = {
+  schema: 1, package: 'std_msgs', messages: {
+    'std_msgs/msg/String': { fields: [{ name: 'data', type: 'string' }], constants: [], definition: 'string data\n' },
+  },
+};
+
+const post = (m) => parentPort.postMessage(m);
+const log = (stream, text) => post({ type: FromHost.LOG, stream, text: String(text) });
+
+/** Every *.py file under `dir` (relative paths). */
+function pythonFiles(dir, prefix = '') {
+  const out = [];
+  for (const entry of fs.readdirSync(path.join(dir, prefix), { withFileTypes: true })) {
+    const rel = path.join(prefix, entry.name);
+    if (entry.isDirectory()) out.push(...pythonFiles(dir, rel));
+    else if (entry.name.endsWith('.py')) out.push(rel);
+  }
+  return out;
+}
+
+const WAIT_KINDS = { subscription: WaitKind.SUBSCRIPTION, service: WaitKind.SERVICE, client: WaitKind.CLIENT };
+
+/** The `_colcon_wasm_bus` module: what rclpy calls (plain values in, plain values out). */
+function busModule(client, registry, context, settle) {
+  const dummyHeap = new Int32Array(new SharedArrayBuffer(16));
+  let items = new Int32Array(0);
+  return {
+    create_node(name, namespace, domain) {
+      return client.createNode({ name, namespace, domain, context }).index;
+    },
+    destroy_node(index) {
+      client.destroyNode(index);
+    },
+    create_publisher(node, topic, type, qosJson) {
+      registry.codec(type); // an unknown type fails here, naming its package
+      return client.createEndpoint({ kind: KIND_PUBLISHER, node, name: topic, type, qos: JSON.parse(qosJson) }).index;
+    },
+    create_subscription(node, topic, type, qosJson) {
+      registry.codec(type);
+      return client.createEndpoint({ kind: KIND_SUBSCRIPTION, node, name: topic, type, qos: JSON.parse(qosJson) }).index;
+    },
+    destroy_endpoint(index) {
+      client.destroyEndpoint(index);
+    },
+    /** Encode (cdr.mjs) and publish; returns the sequence number. */
+    publish(ep, type, value) {
+      return client.publish(ep, registry.encode(type, value), 10000);
+    },
+    /** The next message of a subscription, decoded, or undefined (None in Python). */
+    take(ep, type) {
+      const data = client.take(ep, TakeMode.MESSAGE);
+      return data === null ? undefined : registry.decode(type, data);
+    },
+    create_service(node, name, type, qosJson) {
+      registry.service(type);
+      return client.createEndpoint({ kind: KIND_SERVICE, node, name, type, qos: JSON.parse(qosJson) }).index;
+    },
+    create_client(node, name, type, qosJson) {
+      registry.service(type);
+      return client.createEndpoint({ kind: KIND_CLIENT, node, name, type, qos: JSON.parse(qosJson) }).index;
+    },
+    /** The next request of a service: {value, id} (id: for send_response), or undefined. */
+    take_request(ep, type) {
+      const data = client.take(ep, TakeMode.REQUEST);
+      if (data === null) return undefined;
+      const i = client.info;
+      return { value: registry.decode(type, data), id: { gid: Array.from(i.gid), seqLo: i.reqLo, seqHi: i.reqHi } };
+    },
+    send_response(ep, id, type, value) {
+      return client.sendResponse(ep, id.gid, id.seqLo, id.seqHi, registry.encode(type, value), 10000);
+    },
+    /** Send a request; returns its sequence number (the response carries it). */
+    send_request(ep, type, value) {
+      return client.publish(ep, registry.encode(type, value), 10000);
+    },
+    /** The next response of a client: {value, seq}, or undefined. */
+    take_response(ep, type) {
+      const data = client.take(ep, TakeMode.RESPONSE);
+      if (data === null) return undefined;
+      const i = client.info;
+      return { value: registry.decode(type, data), seq: i.reqHi * 4294967296 + (i.reqLo >>> 0) };
+    },
+    server_available(ep) {
+      return client.serverAvailable(ep);
+    },
+    /**
+     * Block until a client has a server or `timeoutMs` passed (< 0: forever):
+     * sleeps on the bus' graph version, which every graph change bumps.
+     */
+    wait_for_server(ep, timeoutMs) {
+      const i32 = client.bus.i32;
+      const end = timeoutMs < 0 ? Infinity : performance.now() + timeoutMs;
+      for (;;) {
+        const version = Atomics.load(i32, H.GRAPH_VERSION);
+        if (client.serverAvailable(ep)) return true;
+        const left = end - performance.now();
+        if (left <= 0) return false;
+        settle();
+        Atomics.wait(i32, H.GRAPH_VERSION, version, left);
+      }
+    },
+    matched_count(ep) {
+      return client.matchedCount(ep);
+    },
+    /**
+     * Block until one of the endpoints has something to take or the timeout
+     * passes (< 0: forever). `kinds`: 'subscription', 'service' or 'client',
+     * one per handle. Returns the ready flags, one per handle.
+     */
+    wait(handles, kinds, timeoutMs) {
+      const list = Array.from(handles);
+      const kindList = Array.from(kinds);
+      const n = list.length;
+      if (items.length < n * WAIT_ITEM_WORDS) items = new Int32Array(n * WAIT_ITEM_WORDS);
+      for (let i = 0; i < n; i++) {
+        const o = i * WAIT_ITEM_WORDS;
+        items[o] = WAIT_KINDS[kindList[i]];
+        items[o + 1] = list[i];
+        items[o + 2] = 0;
+        items[o + 3] = 0;
+      }
+      if (n === 0) {
+        // nothing to wait for but time: sleep on the doorbell (a stop still ends the worker)
+        settle();
+        client.register();
+        const bell = client.bell();
+        client.sleep(bell, timeoutMs < 0 ? Infinity : timeoutMs);
+        client.unregister();
+        return [];
+      }
+      client.wait(items, 0, n, timeoutMs, dummyHeap);
+      const ready = [];
+      for (let i = 0; i < n; i++) ready.push(items[i * WAIT_ITEM_WORDS + 3] !== 0);
+      return ready;
+    },
+    /** The type descriptions as one JSON text: {messages, services, actions}. */
+    types_json() {
+      return JSON.stringify({
+        messages: Object.fromEntries(registry.messages),
+        services: Object.fromEntries(registry.services),
+        actions: Object.fromEntries(registry.actions),
+      });
+    },
+    has_type(type) {
+      return registry.has(type);
+    },
+    log,
+  };
+}
+
+/** The Python side of the start: argv, environment, run the script, report how it ended. */
+const RUNNER = `
+import os
+import sys
+import traceback
+
+
+def _colcon_wasm_run(file, source, args, env):
+    sys.argv = [file] + list(args)
+    os.environ.update(env)
+    sys.path.insert(0, os.path.dirname(file))
+    glb = {'__name__': '__main__', '__file__': file, '__builtins__': __builtins__}
+    try:
+        exec(compile(source, file, 'exec'), glb)
+    except SystemExit as e:
+        if e.code is None:
+            return 0, ''
+        if isinstance(e.code, int):
+            return e.code, 'sys.exit({})'.format(e.code) if e.code else ''
+        print(e.code, file=sys.stderr)
+        return 1, str(e.code)
+    except BaseException as e:
+        tb = e.__traceback__.tb_next if e.__traceback__ is not None else None
+        traceback.print_exception(type(e), e, tb)
+        last = traceback.format_exception_only(type(e), e)[-1].strip()
+        return 1, 'Python exception: ' + last
+    finally:
+        sys.stdout.flush()
+        sys.stderr.flush()
+    return 0, ''
+`;
+
+async function start(msg) {
+  const client = BusClient.attach(msg.bus, msg.pid);
+  let settled = false;
+  const settle = () => {
+    if (!settled) {
+      settled = true;
+      post({ type: FromHost.SETTLED });
+    }
+  };
+  client.beforeFirstSleep(settle);
+  const registry = new TypeRegistry();
+  for (const doc of msg.types || []) {
+    try {
+      registry.add(doc);
+    } catch (e) {
+      log('stderr', `[WARNING] [${msg.name}]: ${e.message}`);
+    }
+  }
+  if (!registry.has('std_msgs/msg/String')) registry.add(STD_MSGS_STRING);
+  const { loadPyodide } = await import(pathToFileURL(path.join(msg.pyodideDir, 'pyodide.mjs')).href);
+  const pyodide = await loadPyodide({
+    indexURL: msg.pyodideDir + path.sep,
+    env: { HOME: '/home/pyodide', ...msg.env },
+  });
+  pyodide.setStdout({ batched: (line) => log('stdout', line) });
+  pyodide.setStderr({ batched: (line) => log('stderr', line) });
+  // rclpy, from beside this module
+  for (const rel of pythonFiles(HERE)) {
+    const target = `${PYTHON_ROOT}/${rel.split(path.sep).join('/')}`;
+    pyodide.FS.mkdirTree(target.slice(0, target.lastIndexOf('/')));
+    pyodide.FS.writeFile(target, fs.readFileSync(path.join(HERE, rel), 'utf8'));
+  }
+  // the script at its real path, so that tracebacks show its lines
+  pyodide.FS.mkdirTree(path.posix.dirname(msg.file));
+  pyodide.FS.writeFile(msg.file, msg.source);
+  pyodide.registerJsModule('_colcon_wasm_bus', busModule(client, registry, client.createContext(), settle));
+  pyodide.runPython(`import sys\nsys.path.insert(0, ${JSON.stringify(PYTHON_ROOT)})`);
+  pyodide.runPython(RUNNER, { filename: '<colcon-wasm python host>' });
+  const run = pyodide.globals.get('_colcon_wasm_run');
+  post({ type: FromHost.STARTED, prestartedPthreadWorkers: 0, glueFromMemory: false });
+  const result = run(msg.file, msg.source, pyodide.toPy(msg.args), pyodide.toPy(msg.env));
+  const [code, reason] = result.toJs();
+  result.destroy();
+  settle();
+  post({ type: FromHost.EXIT, code, crashed: code !== 0, reason, memoryCopy: false });
+}
+
+parentPort.once('message', (msg) => {
+  if (!msg || msg.type !== 'start') return;
+  start(msg).catch((e) => {
+    log('stderr', `[ERROR] [${msg.name}]: the Python host failed: ${e && e.stack ? e.stack : e}`);
+    post({ type: FromHost.EXIT, code: 1, crashed: true, reason: `the Python host failed: ${e && e.message ? e.message : e}` });
+  });
+});

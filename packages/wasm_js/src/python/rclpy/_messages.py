@@ -1,0 +1,341 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""
+Python message classes, made at import time from the type descriptions.
+
+``from std_msgs.msg import String`` works for every interface package whose
+``types.json`` the process loaded: a meta path finder (last on
+``sys.meta_path``, so real modules win) creates ``<pkg>``, ``<pkg>.msg`` and
+``<pkg>.srv``. The classes follow rosidl_generator_py's: ``__slots__``,
+keyword constructors, defaults, constants as class attributes, ``__eq__``,
+``__repr__`` and type checks with its messages
+(``The 'data' field must be of type 'str'``). Numeric sequences are
+``array.array``; fixed-size arrays are lists (rclpy uses numpy arrays,
+which Pyodide's npm package does not carry).
+"""
+
+import array
+import importlib.abc
+import importlib.machinery
+import json
+import sys
+import types
+
+_INT_RANGES = {
+    'byte': (0, 255), 'char': (0, 255), 'octet': (0, 255),
+    'int8': (-2 ** 7, 2 ** 7 - 1), 'uint8': (0, 2 ** 8 - 1),
+    'int16': (-2 ** 15, 2 ** 15 - 1), 'uint16': (0, 2 ** 16 - 1),
+    'int32': (-2 ** 31, 2 ** 31 - 1), 'uint32': (0, 2 ** 32 - 1),
+    'int64': (-2 ** 63, 2 ** 63 - 1), 'uint64': (0, 2 ** 64 - 1),
+}
+_TYPECODES = {
+    'int8': 'b', 'uint8': 'B', 'int16': 'h', 'uint16': 'H', 'int32': 'i',
+    'uint32': 'I', 'int64': 'q', 'uint64': 'Q', 'float32': 'f', 'float64': 'd',
+}
+_FLOATS = ('float32', 'float64')
+
+_descriptions = {}
+_classes = {}
+
+
+def load_descriptions(text):
+    """Add type descriptions (``{messages, services, actions}`` as JSON text)."""
+    doc = json.loads(text)
+    for kind in ('messages', 'services', 'actions'):
+        _descriptions.setdefault(kind, {}).update(doc.get(kind) or {})
+
+
+def packages():
+    """Return the interface packages described."""
+    names = set()
+    for kind in ('messages', 'services', 'actions'):
+        names.update(name.split('/')[0] for name in _descriptions.get(kind, {}))
+    return names
+
+
+def _normalize(name):
+    parts = name.split('/')
+    if len(parts) == 2:
+        return '{}/msg/{}'.format(*parts)
+    return name
+
+
+def _check_scalar(field, value, name):
+    """Check one element like rosidl_generator_py's setters; returns it unchanged."""
+    kind = field['type']
+    if kind == 'bool':
+        assert isinstance(value, bool), \
+            "The '{}' field must be of type 'bool'".format(name)
+    elif kind in ('string', 'wstring'):
+        assert isinstance(value, str), \
+            "The '{}' field must be of type 'str'".format(name)
+        bound = field.get('string_bound')
+        assert bound is None or len(value) <= bound, \
+            "The '{}' field must be string with length <= {}".format(name, bound)
+    elif kind in _FLOATS:
+        assert isinstance(value, float), \
+            "The '{}' field must be of type 'float'".format(name)
+    elif kind in _INT_RANGES:
+        assert isinstance(value, int) and not isinstance(value, bool), \
+            "The '{}' field must be of type 'int'".format(name)
+        low, high = _INT_RANGES[kind]
+        what = 'an unsigned' if low == 0 else 'a'
+        assert low <= value <= high, \
+            "The '{}' field must be {} integer in [{}, {}]".format(name, what, low, high)
+    else:
+        cls = message_class(_normalize(kind))
+        assert isinstance(value, cls), \
+            "The '{}' field must be a sub message of type '{}'".format(name, cls.__name__)
+    return value
+
+
+def _check(field, value):
+    name = field['name']
+    if 'array_size' not in field and not field.get('sequence'):
+        return _check_scalar(field, value, name)
+    assert isinstance(value, (list, tuple, array.array)), \
+        "The '{}' field must be a set or sequence".format(name)
+    size = field.get('array_size')
+    bound = field.get('sequence_bound')
+    if size is not None:
+        assert len(value) == size, \
+            "The '{}' field must have exactly {} elements".format(name, size)
+    if bound is not None:
+        assert len(value) <= bound, \
+            "The '{}' field must have at most {} elements".format(name, bound)
+    for element in value:
+        _check_scalar(field, element, name)
+    code = _TYPECODES.get(field['type'])
+    if field.get('sequence') and code:
+        return value if isinstance(value, array.array) else array.array(code, value)
+    return list(value)
+
+
+def _zero_scalar(field):
+    kind = field['type']
+    if kind == 'bool':
+        return False
+    if kind in ('string', 'wstring'):
+        return ''
+    if kind in _FLOATS:
+        return 0.0
+    if kind in _INT_RANGES:
+        return 0
+    return message_class(_normalize(kind))()
+
+
+def _default(field):
+    if 'default' in field:
+        value = field['default']
+        if field['type'] in _FLOATS:
+            value = [float(v) for v in value] if isinstance(value, list) else float(value)
+    elif field.get('array_size') is not None:
+        value = [_zero_scalar(field) for _ in range(field['array_size'])]
+    elif field.get('sequence'):
+        value = []
+    else:
+        return _zero_scalar(field)
+    return _check(field, value) if isinstance(value, list) else value
+
+
+def _to_plain(field, value):
+    """Convert a field value for cdr.mjs (through Pyodide's to_js)."""
+    kind = field['type']
+    nested = kind not in _INT_RANGES and kind not in _FLOATS and \
+        kind not in ('bool', 'string', 'wstring')
+    if 'array_size' in field or field.get('sequence'):
+        if nested:
+            return [v._to_plain() for v in value]
+        return list(value)
+    return value._to_plain() if nested else value
+
+
+def _from_plain(field, value):
+    kind = field['type']
+    nested = kind not in _INT_RANGES and kind not in _FLOATS and \
+        kind not in ('bool', 'string', 'wstring')
+    cls = message_class(_normalize(kind)) if nested else None
+    if 'array_size' in field or field.get('sequence'):
+        if isinstance(value, memoryview):
+            value = value.tolist()
+        if nested:
+            return [cls._from_plain(v) for v in value]
+        code = _TYPECODES.get(kind)
+        if field.get('sequence') and code:
+            return array.array(code, value)
+        return list(value)
+    return cls._from_plain(value) if nested else value
+
+
+class Message:
+    """Base of the generated message classes."""
+
+    __slots__ = ()
+    _fields = ()
+    _type = ''
+
+    def __init__(self, **kwargs):
+        """Set the fields given, the others to their defaults."""
+        names = {f['name'] for f in self._fields}
+        assert all(k in names for k in kwargs), \
+            'Invalid arguments passed to constructor: %s' % ', '.join(
+                sorted(k for k in kwargs if k not in names))
+        for field in self._fields:
+            name = field['name']
+            if name in kwargs:
+                setattr(self, name, kwargs[name])
+            else:
+                object.__setattr__(self, '_' + name, _default(field))
+
+    @classmethod
+    def get_fields_and_field_types(cls):
+        """Return {field name: ROS type} as rosidl_generator_py's classes do."""
+        result = {}
+        for field in cls._fields:
+            kind = field['type']
+            if field.get('array_size') is not None:
+                kind = '{}[{}]'.format(kind, field['array_size'])
+            elif field.get('sequence'):
+                bound = field.get('sequence_bound')
+                kind = 'sequence<{}{}>'.format(kind, ', {}'.format(bound) if bound else '')
+            result[field['name']] = kind
+        return result
+
+    def __eq__(self, other):
+        """Equal when of the same class with equal fields."""
+        if not isinstance(other, self.__class__):
+            return False
+        return all(getattr(self, f['name']) == getattr(other, f['name']) for f in self._fields)
+
+    def __repr__(self):
+        """``pkg.msg.Name(field=value, ...)``."""
+        module = self.__class__.__module__
+        args = ', '.join('{}={!r}'.format(f['name'], getattr(self, f['name']))
+                         for f in self._fields)
+        return '{}.{}({})'.format(module, self.__class__.__name__, args)
+
+    def _to_plain(self):
+        return {f['name']: _to_plain(f, getattr(self, '_' + f['name'])) for f in self._fields}
+
+    @classmethod
+    def _from_plain(cls, plain):
+        msg = cls.__new__(cls)
+        for field in cls._fields:
+            object.__setattr__(msg, '_' + field['name'], _from_plain(field, plain[field['name']]))
+        return msg
+
+
+def _property(field):
+    name = field['name']
+
+    def getter(self):
+        return getattr(self, '_' + name)
+
+    def setter(self, value):
+        object.__setattr__(self, '_' + name, _check(field, value))
+
+    return property(getter, setter, doc='Message field {!r}.'.format(name))
+
+
+def _make_class(full, description, module):
+    pkg, kind, name = full.split('/')
+    namespace = {
+        '__slots__': tuple('_' + f['name'] for f in description['fields']),
+        '_fields': tuple(description['fields']),
+        '_type': full,
+        '__module__': module,
+        '__doc__': description.get('definition') or 'Message {}.'.format(full),
+    }
+    for field in description['fields']:
+        namespace[field['name']] = _property(field)
+    for constant in description.get('constants') or []:
+        namespace[constant['name']] = constant['value']
+    return type(name, (Message,), namespace)
+
+
+def message_class(full):
+    """Return the class of a message type ``pkg/msg/Name`` (made once)."""
+    full = _normalize(full)
+    cls = _classes.get(full)
+    if cls is None:
+        description = _descriptions.get('messages', {}).get(full)
+        if description is None:
+            pkg = full.split('/')[0]
+            hint = ("package '{}' has type descriptions, but not this message".format(pkg)
+                    if pkg in packages() else
+                    "no types.json of package '{}' is loaded: build '{}' with "
+                    'colcon build --wasm into this install space'.format(pkg, pkg))
+            raise ImportError('unknown message type {!r}: {}'.format(full, hint))
+        pkg, kind, name = full.split('/')
+        cls = _make_class(full, description, '{}.{}'.format(pkg, kind))
+        _classes[full] = cls
+    return cls
+
+
+def service_class(full):
+    """Return the class of a service type ``pkg/srv/Name``: its Request and Response."""
+    cls = _classes.get(full)
+    if cls is None:
+        description = _descriptions.get('services', {}).get(full)
+        if description is None:
+            raise ImportError('unknown service type {!r}: build its package with '
+                              'colcon build --wasm into this install space'.format(full))
+        pkg, kind, name = full.split('/')
+        cls = type(name, (), {
+            'Request': message_class(description['request']),
+            'Response': message_class(description['response']),
+            '_type': full,
+            '__module__': '{}.{}'.format(pkg, kind),
+            '__doc__': description.get('definition') or 'Service {}.'.format(full),
+        })
+        _classes[full] = cls
+    return cls
+
+
+def type_name(msg_type):
+    """Return the ROS type name of a generated message or service class."""
+    name = getattr(msg_type, '_type', None)
+    if not name:
+        raise TypeError('{!r} is not a message or service class of this rclpy (import it '
+                        'from <package>.msg or <package>.srv)'.format(msg_type))
+    return name
+
+
+class _InterfaceFinder(importlib.abc.MetaPathFinder, importlib.abc.Loader):
+    """Creates ``<pkg>`` and ``<pkg>.msg`` modules of the described packages."""
+
+    def find_spec(self, fullname, path=None, target=None):  # noqa: D102
+        parts = fullname.split('.')
+        if parts[0] not in packages() or len(parts) > 2:
+            return None
+        if len(parts) == 2 and parts[1] not in ('msg', 'srv', 'action'):
+            return None
+        return importlib.machinery.ModuleSpec(fullname, self, is_package=len(parts) == 1)
+
+    def create_module(self, spec):  # noqa: D102
+        module = types.ModuleType(spec.name)
+        parts = spec.name.split('.')
+        if len(parts) == 1:
+            module.__path__ = []
+            return module
+        pkg, kind = parts
+        prefix = '{}/{}/'.format(pkg, kind)
+        table = _descriptions.get('messages', {}) if kind in ('msg', 'srv') else {}
+        for full in sorted(table):
+            if full.startswith(prefix):
+                setattr(module, full[len(prefix):], message_class(full))
+        if kind == 'srv':
+            for full in sorted(_descriptions.get('services', {})):
+                if full.startswith(prefix):
+                    setattr(module, full[len(prefix):], service_class(full))
+        return module
+
+    def exec_module(self, module):  # noqa: D102
+        pass
+
+
+def install_finder():
+    """Put the finder last on sys.meta_path (once)."""
+    if not any(isinstance(f, _InterfaceFinder) for f in sys.meta_path):
+        sys.meta_path.append(_InterfaceFinder())

@@ -1,0 +1,504 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""Node, Publisher, Subscription and Timer on the bus."""
+
+import time
+
+from rclpy import _messages
+from rclpy._bus import bus
+from rclpy._bus import plain_to_js
+from rclpy.context import default_context
+from rclpy.logging import RcutilsLogger
+from rclpy.parameter import Parameter
+from rclpy.parameter import SetParametersResult
+from rclpy.qos import profile_of
+from rclpy.qos import qos_profile_services_default
+from rclpy.task import Future
+
+
+class Publisher:
+    """Publishes messages of one type on one topic."""
+
+    def __init__(self, node, msg_type, topic, handle, qos_profile):
+        """Made by Node.create_publisher."""
+        self.node = node
+        self.msg_type = msg_type
+        self.topic = topic
+        self.qos_profile = qos_profile
+        self._type_name = _messages.type_name(msg_type)
+        self._handle = handle
+
+    @property
+    def topic_name(self):
+        """Return the fully qualified topic name."""
+        return self.topic
+
+    def publish(self, msg):
+        """Publish a message (an instance of msg_type)."""
+        if not isinstance(msg, self.msg_type):
+            raise TypeError('Expected {}, got {}'.format(self.msg_type, type(msg)))
+        bus.publish(self._handle, self._type_name, plain_to_js(msg._to_plain()))
+
+    def get_subscription_count(self):
+        """Return the number of matched subscriptions."""
+        return bus.matched_count(self._handle)
+
+    def destroy(self):
+        """Leave the graph."""
+        if self._handle is not None:
+            bus.destroy_endpoint(self._handle)
+            self._handle = None
+
+
+class Subscription:
+    """Calls ``callback(msg)`` for each message of a topic."""
+
+    def __init__(self, node, msg_type, topic, callback, handle, qos_profile):
+        """Made by Node.create_subscription."""
+        self.node = node
+        self.msg_type = msg_type
+        self.topic = topic
+        self.callback = callback
+        self.qos_profile = qos_profile
+        self._type_name = _messages.type_name(msg_type)
+        self._handle = handle
+
+    @property
+    def topic_name(self):
+        """Return the fully qualified topic name."""
+        return self.topic
+
+    def _take(self):
+        value = bus.take(self._handle, self._type_name)
+        if value is None:
+            return None
+        return self.msg_type._from_plain(value.to_py())
+
+    def get_publisher_count(self):
+        """Return the number of matched publishers."""
+        return bus.matched_count(self._handle)
+
+    def destroy(self):
+        """Leave the graph."""
+        if self._handle is not None:
+            bus.destroy_endpoint(self._handle)
+            self._handle = None
+
+
+class Service:
+    """Answers requests: ``callback(request, response)`` returns the response."""
+
+    def __init__(self, node, srv_type, srv_name, callback, handle, qos_profile):
+        """Made by Node.create_service."""
+        self.node = node
+        self.srv_type = srv_type
+        self.srv_name = srv_name
+        self.callback = callback
+        self.qos_profile = qos_profile
+        self._type_name = _messages.type_name(srv_type)
+        self._request = _messages.type_name(srv_type.Request)
+        self._response = _messages.type_name(srv_type.Response)
+        self._handle = handle
+
+    @property
+    def service_name(self):
+        """Return the fully qualified service name."""
+        return self.srv_name
+
+    def _serve_one(self):
+        taken = bus.take_request(self._handle, self._request)
+        if taken is None:
+            return False
+        request = self.srv_type.Request._from_plain(taken.value.to_py())
+        response = self.callback(request, self.srv_type.Response())
+        if not isinstance(response, self.srv_type.Response):
+            raise TypeError('the callback of service {!r} returned {!r}, not a {}'.format(
+                self.srv_name, type(response), self.srv_type.Response))
+        bus.send_response(self._handle, taken.id, self._response,
+                          plain_to_js(response._to_plain()))
+        return True
+
+    def destroy(self):
+        """Leave the graph."""
+        if self._handle is not None:
+            bus.destroy_endpoint(self._handle)
+            self._handle = None
+
+
+class Client:
+    """Calls a service: ``call_async(request)`` returns a Future of the response."""
+
+    def __init__(self, node, srv_type, srv_name, handle, qos_profile):
+        """Made by Node.create_client."""
+        self.node = node
+        self.srv_type = srv_type
+        self.srv_name = srv_name
+        self.qos_profile = qos_profile
+        self._request = _messages.type_name(srv_type.Request)
+        self._response = _messages.type_name(srv_type.Response)
+        self._handle = handle
+        self._pending = {}
+
+    def call_async(self, request):
+        """Send a request; the Future completes while the node spins."""
+        if not isinstance(request, self.srv_type.Request):
+            raise TypeError('Expected {}, got {}'.format(self.srv_type.Request, type(request)))
+        sequence = bus.send_request(self._handle, self._request, plain_to_js(request._to_plain()))
+        future = Future()
+        self._pending[int(sequence)] = future
+        return future
+
+    def service_is_ready(self):
+        """Return True when a server is matched."""
+        return bool(bus.server_available(self._handle))
+
+    def wait_for_service(self, timeout_sec=None):
+        """Block until a server is there (sleeping on graph changes); False on timeout."""
+        timeout_ms = -1 if timeout_sec is None or timeout_sec < 0 else timeout_sec * 1000.0
+        return bool(bus.wait_for_server(self._handle, timeout_ms))
+
+    def _take_one(self):
+        taken = bus.take_response(self._handle, self._response)
+        if taken is None:
+            return False
+        future = self._pending.pop(int(taken.seq), None)
+        if future is not None and not future.done():
+            future.set_result(self.srv_type.Response._from_plain(taken.value.to_py()))
+        return True
+
+    def destroy(self):
+        """Leave the graph."""
+        if self._handle is not None:
+            bus.destroy_endpoint(self._handle)
+            self._handle = None
+
+
+class Timer:
+    """Calls ``callback()`` every ``timer_period_ns`` (monotonic clock)."""
+
+    def __init__(self, callback, timer_period_sec):
+        """Made by Node.create_timer; first call one period from now."""
+        if timer_period_sec <= 0:
+            raise ValueError('timer period must be > 0, got {}'.format(timer_period_sec))
+        self.callback = callback
+        self.timer_period_ns = int(timer_period_sec * 1e9)
+        self._period = timer_period_sec
+        self._next = time.monotonic() + timer_period_sec
+        self._canceled = False
+
+    def cancel(self):
+        """Stop calling back."""
+        self._canceled = True
+
+    def reset(self):
+        """Start a period from now."""
+        self._canceled = False
+        self._next = time.monotonic() + self._period
+
+    def is_canceled(self):
+        """Return True when canceled."""
+        return self._canceled
+
+    def time_until_next_call(self):
+        """Return nanoseconds until the next call (None when canceled)."""
+        if self._canceled:
+            return None
+        return max(0, int((self._next - time.monotonic()) * 1e9))
+
+    def destroy(self):
+        """Stop calling back."""
+        self.cancel()
+
+    def _due(self, now):
+        return not self._canceled and now >= self._next
+
+    def _advance(self, now):
+        self._next += self._period
+        if self._next <= now:  # late by more than a period: do not call in a burst
+            self._next = now + self._period
+
+
+class Time:
+    """A point in time of a clock (nanoseconds)."""
+
+    def __init__(self, *, seconds=0, nanoseconds=0):
+        """Create a time."""
+        self.nanoseconds = int(seconds * 10 ** 9) + int(nanoseconds)
+
+    def seconds_nanoseconds(self):
+        """Return (seconds, nanoseconds)."""
+        return divmod(self.nanoseconds, 10 ** 9)
+
+
+class Clock:
+    """The system clock."""
+
+    def now(self):
+        """Return the current time."""
+        return Time(nanoseconds=time.time_ns())
+
+
+def _expand(name, namespace, node_name, what):
+    if not name:
+        raise ValueError('{} name must not be empty'.format(what))
+    if name.startswith('~'):
+        base = namespace.rstrip('/') + '/' + node_name
+        name = base + name[1:]
+    elif not name.startswith('/'):
+        name = namespace.rstrip('/') + '/' + name
+    return name
+
+
+class Node:
+    """A ROS node of this process on the bus."""
+
+    def __init__(self, node_name, *, context=None, namespace=None, cli_args=None,
+                 **kwargs):
+        """Create the node (it joins the graph now); ``-r __node:=`` and ``__ns:=`` apply."""
+        self.context = context or default_context()
+        self.context._check_ok('create a node')
+        remaps = self.context.remappings(cli_args)
+        node_name = remaps.get('__node', node_name)
+        namespace = remaps.get('__ns', namespace) or '/'
+        if not namespace.startswith('/'):
+            namespace = '/' + namespace
+        if len(namespace) > 1:
+            namespace = namespace.rstrip('/')
+        self._remaps = remaps
+        self._name = node_name
+        self._namespace = namespace
+        self._handle = bus.create_node(node_name, namespace, self.context.domain_id)
+        self._logger = RcutilsLogger(node_name if namespace == '/' else
+                                     namespace.strip('/').replace('/', '.') + '.' + node_name)
+        self._clock = Clock()
+        self.publishers = []
+        self.subscriptions = []
+        self.timers = []
+        self.services = []
+        self.clients = []
+        self._parameters = {}
+        self._parameter_callbacks = []
+        self._overrides = self.context.parameter_overrides(node_name, cli_args)
+        self.context._nodes.append(self)
+
+    def get_name(self):
+        """Return the node's name."""
+        return self._name
+
+    def get_namespace(self):
+        """Return the node's namespace."""
+        return self._namespace
+
+    def get_fully_qualified_name(self):
+        """Return ``/ns/name``."""
+        return self._namespace.rstrip('/') + '/' + self._name
+
+    def get_logger(self):
+        """Return the node's logger."""
+        return self._logger
+
+    def get_clock(self):
+        """Return the node's clock (the system clock)."""
+        return self._clock
+
+    def resolve_topic_name(self, topic):
+        """Expand a topic name (relative, ``~``) and apply remappings."""
+        topic = self._remaps.get(topic, topic)
+        full = _expand(topic, self._namespace, self._name, 'topic')
+        return self._remaps.get(full, full)
+
+    def create_publisher(self, msg_type, topic, qos_profile, **kwargs):
+        """Create a publisher; ``qos_profile`` is a QoSProfile or a history depth."""
+        qos = profile_of(qos_profile)
+        type_name = _messages.type_name(msg_type)
+        name = self.resolve_topic_name(topic)
+        handle = bus.create_publisher(self._handle, name, type_name, qos.to_bus())
+        publisher = Publisher(self, msg_type, name, handle, qos)
+        self.publishers.append(publisher)
+        return publisher
+
+    def create_subscription(self, msg_type, topic, callback, qos_profile, **kwargs):
+        """Create a subscription that calls ``callback(msg)`` while the node spins."""
+        qos = profile_of(qos_profile)
+        type_name = _messages.type_name(msg_type)
+        name = self.resolve_topic_name(topic)
+        handle = bus.create_subscription(self._handle, name, type_name, qos.to_bus())
+        subscription = Subscription(self, msg_type, name, callback, handle, qos)
+        self.subscriptions.append(subscription)
+        return subscription
+
+    def create_timer(self, timer_period_sec, callback, callback_group=None, clock=None):
+        """Create a timer that calls ``callback()`` every period while the node spins."""
+        timer = Timer(callback, timer_period_sec)
+        self.timers.append(timer)
+        return timer
+
+    def create_service(self, srv_type, srv_name, callback, *,
+                       qos_profile=qos_profile_services_default, **kwargs):
+        """Create a service server; ``callback(request, response)`` returns the response."""
+        name = self._resolve_service_name(srv_name)
+        handle = bus.create_service(self._handle, name, _messages.type_name(srv_type),
+                                    qos_profile.to_bus())
+        service = Service(self, srv_type, name, callback, handle, qos_profile)
+        self.services.append(service)
+        return service
+
+    def create_client(self, srv_type, srv_name, *, qos_profile=qos_profile_services_default,
+                      **kwargs):
+        """Create a service client."""
+        name = self._resolve_service_name(srv_name)
+        handle = bus.create_client(self._handle, name, _messages.type_name(srv_type),
+                                   qos_profile.to_bus())
+        client = Client(self, srv_type, name, handle, qos_profile)
+        self.clients.append(client)
+        return client
+
+    def _resolve_service_name(self, name):
+        name = self._remaps.get(name, name)
+        full = _expand(name, self._namespace, self._name, 'service')
+        return self._remaps.get(full, full)
+
+    def destroy_service(self, service):
+        """Destroy a service server of this node."""
+        service.destroy()
+        if service in self.services:
+            self.services.remove(service)
+        return True
+
+    def destroy_client(self, client):
+        """Destroy a service client of this node."""
+        client.destroy()
+        if client in self.clients:
+            self.clients.remove(client)
+        return True
+
+    def declare_parameter(self, name, value=None, descriptor=None, ignore_override=False):
+        """Declare a parameter; a ``-p name:=value`` override wins over ``value``."""
+        if name in self._parameters:
+            raise ParameterAlreadyDeclaredException(name)
+        if not ignore_override and name in self._overrides:
+            value = self._overrides[name]
+        parameter = Parameter(name, value=value)
+        result = self._run_parameter_callbacks([parameter])
+        if not result.successful:
+            raise InvalidParameterValueException(name, value, result.reason)
+        self._parameters[name] = parameter
+        return parameter
+
+    def declare_parameters(self, namespace, parameters):
+        """Declare ``[(name, value), ...]`` under ``namespace.``."""
+        prefix = namespace + '.' if namespace else ''
+        return [self.declare_parameter(prefix + entry[0], *entry[1:2]) for entry in parameters]
+
+    def has_parameter(self, name):
+        """Return True when the parameter is declared."""
+        return name in self._parameters
+
+    def get_parameter(self, name):
+        """Return a declared parameter."""
+        if name not in self._parameters:
+            raise ParameterNotDeclaredException(name)
+        return self._parameters[name]
+
+    def get_parameter_or(self, name, alternative_value=None):
+        """Return a declared parameter, else ``alternative_value``."""
+        if name not in self._parameters:
+            return alternative_value
+        return self._parameters[name]
+
+    def get_parameters(self, names):
+        """Return declared parameters."""
+        return [self.get_parameter(n) for n in names]
+
+    def set_parameters(self, parameters):
+        """Set declared parameters one by one; returns a SetParametersResult each."""
+        results = []
+        for parameter in parameters:
+            if parameter.name not in self._parameters:
+                raise ParameterNotDeclaredException(parameter.name)
+            result = self._run_parameter_callbacks([parameter])
+            if result.successful:
+                self._parameters[parameter.name] = parameter
+            results.append(result)
+        return results
+
+    def add_on_set_parameters_callback(self, callback):
+        """Call ``callback([Parameter])`` before parameters change; it may refuse."""
+        self._parameter_callbacks.insert(0, callback)
+
+    def remove_on_set_parameters_callback(self, callback):
+        """Remove a parameter callback."""
+        self._parameter_callbacks.remove(callback)
+
+    def _run_parameter_callbacks(self, parameters):
+        for callback in self._parameter_callbacks:
+            result = callback(parameters)
+            if not result.successful:
+                return result
+        return SetParametersResult(successful=True)
+
+    def destroy_publisher(self, publisher):
+        """Destroy a publisher of this node."""
+        publisher.destroy()
+        if publisher in self.publishers:
+            self.publishers.remove(publisher)
+        return True
+
+    def destroy_subscription(self, subscription):
+        """Destroy a subscription of this node."""
+        subscription.destroy()
+        if subscription in self.subscriptions:
+            self.subscriptions.remove(subscription)
+        return True
+
+    def destroy_timer(self, timer):
+        """Destroy a timer of this node."""
+        timer.destroy()
+        if timer in self.timers:
+            self.timers.remove(timer)
+        return True
+
+    def destroy_node(self):
+        """Leave the graph with every endpoint of this node."""
+        for publisher in list(self.publishers):
+            self.destroy_publisher(publisher)
+        for subscription in list(self.subscriptions):
+            self.destroy_subscription(subscription)
+        for timer in list(self.timers):
+            self.destroy_timer(timer)
+        for service in list(self.services):
+            self.destroy_service(service)
+        for client in list(self.clients):
+            self.destroy_client(client)
+        if self._handle is not None:
+            bus.destroy_node(self._handle)
+            self._handle = None
+        if self in self.context._nodes:
+            self.context._nodes.remove(self)
+        return True
+
+
+class ParameterNotDeclaredException(Exception):
+    """A parameter that was not declared."""
+
+    def __init__(self, name):
+        """Name the parameter."""
+        super().__init__('Invalid access to undeclared parameter(s)', name)
+
+
+class ParameterAlreadyDeclaredException(Exception):
+    """A parameter declared twice."""
+
+    def __init__(self, name):
+        """Name the parameter."""
+        super().__init__('Parameter(s) already declared', name)
+
+
+class InvalidParameterValueException(Exception):
+    """A parameter value that a callback refused."""
+
+    def __init__(self, name, value, reason):
+        """Name the parameter, the value and the reason."""
+        super().__init__('Invalid parameter value ({}) for parameter. Reason: {}'.format(
+            value, reason), name)

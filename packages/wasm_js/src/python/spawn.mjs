@@ -1,0 +1,124 @@
+// Copyright 2026 The colcon-wasm authors. Licensed under the Apache License 2.0.
+
+/**
+ * Python nodes: a Python script run by Pyodide in its own worker, as a bus
+ * process beside the Emscripten executables (the `rclpy` of
+ * `python/rclpy/`). Node.js only for now (worker_threads); see
+ * docs/python.md of colcon-wasm.
+ *
+ *   import { spawnPython } from '.../wasm_js/src/python/spawn.mjs';
+ *   const proc = await spawnPython(runtime, { file: '/ws/talker.py', pyodideDir, types,
+ *     onLog, onExit });
+ *
+ * The process is a NodeProcess of the runtime (logs, exit, stop(), graph
+ * clean-up are the executables'): the worker speaks the host protocol
+ * (protocol.mjs FromHost).
+ *
+ * @module python/spawn
+ */
+
+import { BusError, Code } from '../bus.mjs';
+import { PROC_KIND_NODE } from '../layout.mjs';
+import { HostWorker, isNode, siblingUrl } from '../platform.mjs';
+import { NodeProcess } from '../runtime.mjs';
+
+/** The Pyodide release (npm package `pyodide`) this runtime is written and tested for. */
+export const PYODIDE_VERSION = '314.0.8';
+
+/** The files of the npm package that a Python node loads (nothing comes from a CDN). */
+export const PYODIDE_FILES = ['pyodide.mjs', 'pyodide.asm.mjs', 'pyodide.asm.wasm', 'python_stdlib.zip', 'pyodide-lock.json'];
+
+/**
+ * Check a Pyodide folder (the npm package's): its files and its version.
+ * @param {string} dir the folder holding pyodide.mjs (node_modules/pyodide)
+ * @returns {Promise<string>} the version found
+ * @throws {BusError} naming what is missing and how to get it
+ */
+export async function checkPyodide(dir) {
+  const fix = `install it with 'npm install --prefix DIR pyodide@${PYODIDE_VERSION}' and name `
+    + "DIR/node_modules/pyodide with COLCON_WASM_PYODIDE (see 'colcon-wasm doctor')";
+  if (!dir) throw new BusError(Code.INVALID_ARGUMENT, `a Python node needs Pyodide ${PYODIDE_VERSION}: ${fix}`);
+  const fs = await import('node:fs');
+  const path = await import('node:path');
+  const missing = PYODIDE_FILES.filter((f) => !fs.existsSync(path.join(dir, f)));
+  if (missing.length) {
+    throw new BusError(Code.INVALID_ARGUMENT, `the Pyodide folder '${dir}' lacks ${missing.join(', ')}: ${fix}`);
+  }
+  let version = 'unknown';
+  try {
+    version = JSON.parse(fs.readFileSync(path.join(dir, 'package.json'), 'utf8')).version;
+  } catch (e) {
+    // no package.json: checked below
+  }
+  if (version !== PYODIDE_VERSION) {
+    throw new BusError(Code.INVALID_ARGUMENT,
+      `Incorrect Pyodide version ${version} in '${dir}'. Need Pyodide version ${PYODIDE_VERSION}: ${fix}`);
+  }
+  return version;
+}
+
+/**
+ * Run a Python script as a bus process.
+ * @param {import('../runtime.mjs').Runtime} runtime
+ * @param {object} spec
+ * @param {string} spec.file the script (absolute path); it runs as `__main__`
+ * @param {string} [spec.source] its text (default: read from `file`)
+ * @param {string[]} [spec.args] sys.argv[1:]
+ * @param {Object<string, string>} [spec.env] os.environ
+ * @param {string} [spec.name] a name for logs (default: the file's base name)
+ * @param {string} spec.pyodideDir the npm package `pyodide` (folder of pyodide.mjs)
+ * @param {Array<object|string>} [spec.types] types.json documents, or their paths
+ * @param {function(object): void} [spec.onLog] as Runtime.spawn's
+ * @param {function(object): void} [spec.onExit] as Runtime.spawn's
+ * @returns {Promise<NodeProcess>}
+ */
+export async function spawnPython(runtime, spec) {
+  if (!isNode) {
+    throw new BusError(Code.UNSUPPORTED, 'Python nodes run in Node.js only for now (docs/python.md of colcon-wasm)');
+  }
+  if (runtime._closed) throw new BusError(Code.ERROR, 'spawnPython: the runtime is closed');
+  if (!spec || !spec.file) throw new BusError(Code.INVALID_ARGUMENT, 'spawnPython: missing file (the Python script)');
+  const fs = await import('node:fs');
+  const path = await import('node:path');
+  const file = path.resolve(spec.file);
+  const name = spec.name || path.basename(file).replace(/\.py$/, '');
+  await checkPyodide(spec.pyodideDir);
+  let source = spec.source;
+  if (source === undefined) {
+    try {
+      source = fs.readFileSync(file, 'utf8');
+    } catch (e) {
+      throw new BusError(Code.INVALID_ARGUMENT, `spawnPython '${name}': cannot read ${file}: ${e.message}`);
+    }
+  }
+  const types = (spec.types || []).map((t) => {
+    if (typeof t !== 'string') return t;
+    try {
+      return JSON.parse(fs.readFileSync(t, 'utf8'));
+    } catch (e) {
+      throw new BusError(Code.INVALID_ARGUMENT, `spawnPython '${name}': cannot read the type descriptions ${t}: ${e.message}`);
+    }
+  });
+  const env = {};
+  for (const [k, v] of Object.entries(spec.env || {})) env[k] = String(v);
+  const pid = await runtime._allocPid(PROC_KIND_NODE);
+  let worker;
+  try {
+    worker = await HostWorker.start(siblingUrl('python/python_host.mjs'), { name: `python ${name}`, type: 'module' });
+  } catch (e) {
+    await runtime._reap(pid, null);
+    throw new BusError(Code.ERROR, `spawnPython '${name}': cannot start a worker: ${e.message}`);
+  }
+  const proc = new NodeProcess(runtime, pid, name, worker, { ...spec, spawnedAt: performance.now() });
+  runtime.processes.set(pid, proc);
+  worker.on('message', (m) => proc._onMessage(m));
+  worker.on('error', (e) => proc._finish({ code: 1, crashed: true, reason: `uncaught error in the Python host: ${e.message}` }));
+  worker.on('exit', ({ code }) => {
+    proc._finish({ code, crashed: code !== 0, reason: code !== 0 ? `worker exited with code ${code}` : '' });
+  });
+  worker.postMessage({
+    type: 'start', bus: runtime.bus.handle, pid, name, file, source, args: (spec.args || []).map(String), env,
+    pyodideDir: path.resolve(spec.pyodideDir), types,
+  });
+  return proc;
+}

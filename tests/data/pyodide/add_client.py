@@ -1,0 +1,29 @@
+"""A Python AddTwoInts client of /cpp_add_two_ints: three calls, then it exits."""
+
+import sys
+
+import rclpy
+from rclpy.node import Node
+
+from demo_interfaces.srv import AddTwoInts
+
+
+def main():
+    rclpy.init()
+    node = Node('py_client')
+    client = node.create_client(AddTwoInts, 'cpp_add_two_ints')
+    if not client.wait_for_service(timeout_sec=60.0):
+        node.get_logger().error('no server on /cpp_add_two_ints')
+        sys.exit(3)
+    for a in (1, 20, 2 ** 40):
+        future = client.call_async(AddTwoInts.Request(a=a, b=2 * a))
+        rclpy.spin_until_future_complete(node, future, timeout_sec=10.0)
+        if not future.done():
+            node.get_logger().error('no response for a={}'.format(a))
+            sys.exit(4)
+        node.get_logger().info('Result of add_two_ints: for {} + {} = {}'.format(
+            a, 2 * a, future.result().sum))
+    rclpy.shutdown()
+
+
+main()

@@ -1,0 +1,127 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""
+Python nodes (rclpy in Pyodide) next to the C++ demo nodes, in Node.js.
+
+The demo workspace (tests/demo_build.py, no Humble) and the npm package
+``pyodide`` of tests/js (``npm ci`` there). Every run is bounded by
+``--duration`` and a subprocess timeout.
+"""
+
+import os
+from pathlib import Path
+import re
+import shutil
+import subprocess
+
+import demo_build
+import pytest
+
+REPO = Path(__file__).resolve().parents[1]
+DATA = REPO / 'tests' / 'data' / 'pyodide'
+PYODIDE = REPO / 'tests' / 'js' / 'node_modules' / 'pyodide'
+
+
+@pytest.fixture(scope='module')
+def install():
+    """Build the demo workspace (once per test run) and check for Pyodide."""
+    assert shutil.which('node'), 'Node.js 20 is needed (apt-get install nodejs)'
+    if not (PYODIDE / 'pyodide.asm.wasm').is_file():
+        pytest.skip('the npm package pyodide is missing: run `npm ci` in tests/js')
+    return demo_build.demo_install()
+
+
+def colcon_wasm(*args, timeout=180):
+    """Run colcon-wasm with Pyodide from tests/js; returns (status, output: stdout and stderr)."""
+    env = dict(os.environ, COLCON_WASM_PYODIDE=str(PYODIDE))
+    result = subprocess.run([str(demo_build.venv_tool('colcon-wasm')), *map(str, args)],
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                            env=env, timeout=timeout)
+    return result.returncode, result.stdout
+
+
+def test_python_and_cpp_nodes_hear_each_other_and_a_python_crash_is_contained(install):
+    code, out = colcon_wasm(
+        'launch', '--install-base', install, '--duration', 45,
+        '--python', DATA / 'talker.py', '--python', DATA / 'listener.py',
+        '--python', DATA / 'crasher.py', 'demo_nodes/talker', 'demo_nodes/listener')
+    lines = out.splitlines()
+    # Python talker -> C++ listener, C++ talker -> Python listener (byte-exact CDR both ways)
+    cpp_heard = [i for i, line in enumerate(lines)
+                 if re.match(r'\[listener-2\] .*I heard: \[Hello from Python: \d+\]', line)]
+    py_heard = [i for i, line in enumerate(lines)
+                if re.match(r'\[listener-4\] .*\[py_listener\]: I heard: \[Hello World: (\d+)\] '
+                            r'count=\1$', line)]
+    assert cpp_heard, out[-6000:]
+    assert py_heard, out[-6000:]
+    assert any(re.match(r'\[talker-3\] \[INFO\] \[[\d.]+\] \[py_talker\]: Publishing', line)
+               for line in lines), out[-6000:]
+    # the crasher: its traceback with file and line, reported as a crash
+    tb = out.index('[crasher-5] Traceback (most recent call last):')
+    assert '[crasher-5]   File "{}", line 8, in explode'.format(DATA / 'crasher.py') in out[tb:]
+    assert '[crasher-5] ValueError: the Python crasher gives up' in out[tb:]
+    died = [i for i, line in enumerate(lines) if line.startswith(
+        '[ERROR] [crasher-5]: process has died [exit code 1, Python exception: ValueError: '
+        'the Python crasher gives up')]
+    assert died, out[-6000:]
+    # ... and the others go on
+    assert max(cpp_heard) > died[0] and max(py_heard) > died[0], out[-6000:]
+    assert code == 1, out[-3000:]  # a process crashed
+
+
+def test_python_services_and_clients_talk_to_cpp_ones(install):
+    code, out = colcon_wasm(
+        'launch', '--install-base', install, '--duration', 40,
+        '--python', DATA / 'add_server.py', '--python', DATA / 'add_client.py',
+        DATA / 'services.launch.xml')
+    # C++ client -> Python server on /add_two_ints
+    assert re.search(r'\[add_server-3\] .*\[py_server\]: Incoming request: a: (\d+) '
+                     r'b: \d+', out), out[-6000:]
+    assert re.search(r'\[add_two_ints_client-2\] .*Result of add_two_ints: for (\d+) \+ \d+ = '
+                     r'\d+', out), out[-6000:]
+    # Python client -> C++ server on /cpp_add_two_ints, int64 beyond 2**32 included
+    for a in (1, 20, 2 ** 40):
+        assert '[py_client]: Result of add_two_ints: for {} + {} = {}'.format(
+            a, 2 * a, 3 * a) in out, out[-6000:]
+    assert '[INFO] [add_client-4]: process has finished cleanly' in out
+    assert code == 0, out[-3000:]
+
+
+def test_message_classes_parameters_and_cdr_round_trip(install):
+    code, out = colcon_wasm('run', '--install-base', install, '--duration', 60,
+                            '--python', DATA / 'messages.py')
+    assert code == 0, out[-4000:]
+    assert '[checks.py_messages]: message classes behave' in out
+    assert '[INFO] [messages-1]: process has finished cleanly' in out
+
+
+def test_print_plan_lists_python_nodes(install):
+    code, out = colcon_wasm('launch', '--install-base', install, '--print-plan',
+                            '--python', DATA / 'talker.py', 'demo_nodes/listener')
+    assert code == 0, out
+    assert '[talker-2] {}'.format(DATA / 'talker.py') in out.splitlines()
+
+
+def test_missing_script_and_missing_pyodide_are_clear(install, tmp_path):
+    code, out = colcon_wasm('run', '--install-base', install, '--python', tmp_path / 'nope.py')
+    assert code == 1
+    assert "Python node '{}' does not exist".format(tmp_path / 'nope.py') in out
+    (tmp_path / 'script.py').write_text('print(1)\n')
+    code, out = colcon_wasm('run', '--install-base', install, '--pyodide', tmp_path,
+                            '--python', tmp_path / 'script.py')
+    assert code == 1
+    assert "Python nodes need Pyodide 314.0.8, and '{}' (--pyodide) lacks pyodide.mjs".format(
+        tmp_path) in out
+    assert 'npm install --prefix' in out and 'pyodide@314.0.8' in out
+    code, out = colcon_wasm('run', '--install-base', install)
+    assert code == 1 and 'name PKG EXE (or a Python node with --python FILE' in out
+
+
+def test_pyodide_version_is_pinned_once():
+    """The Python side, the JS side and tests/js pin the same Pyodide release."""
+    from colcon_wasm.launch.python_nodes import PYODIDE_VERSION
+    spawn = (REPO / 'packages' / 'wasm_js' / 'src' / 'python' / 'spawn.mjs').read_text()
+    assert "PYODIDE_VERSION = '{}'".format(PYODIDE_VERSION) in spawn
+    package = (REPO / 'tests' / 'js' / 'package.json').read_text()
+    assert '"pyodide": "{}"'.format(PYODIDE_VERSION) in package

@@ -1,0 +1,399 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""
+The relay's message forms (colcon_wasm/server/relay_forms.py) against the Node.js server's.
+
+For the same messages, the relay's cbor form (built from JSON with the type
+descriptions) must be the bytes the Node.js server writes (from the decoded
+CDR; tests/js/relay_forms.mjs runs convert.mjs and cbor.mjs), its png the
+PNG of png.mjs, and the client's CDR publish (client_topics.mjs) a request
+the relay reads as one. Needs Node.js, no build. Then the relay's
+subscription rules (relay_topics.py) over a socket pair.
+"""
+
+import base64
+import json
+from pathlib import Path
+import shutil
+import socket
+import struct
+import subprocess
+import sys
+import time
+import zlib
+
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from colcon_wasm.server import relay_forms  # noqa: E402
+from colcon_wasm.server.relay import Relay  # noqa: E402
+
+JS = Path(__file__).resolve().parent / 'js'
+SCALARS = ['bool', 'byte', 'char', 'int8', 'uint8', 'int16', 'uint16', 'int32', 'uint32',
+           'int64', 'uint64', 'float32', 'float64', 'string']
+TYPES = {
+    'schema': 1, 'package': 't',
+    'messages': {
+        't/msg/Time': {'fields': [{'name': 'sec', 'type': 'int32'},
+                                  {'name': 'nanosec', 'type': 'uint32'}]},
+        't/msg/All': {'fields': (
+            [{'name': k + '_v', 'type': k} for k in SCALARS]
+            + [{'name': k + '_seq', 'type': k, 'sequence': True} for k in SCALARS]
+            + [{'name': k + '_arr', 'type': k, 'array_size': 2} for k in SCALARS]
+            + [{'name': 'time', 'type': 't/msg/Time'},
+               {'name': 'times', 'type': 't/msg/Time', 'sequence': True},
+               {'name': 'fixed_times', 'type': 't/msg/Time', 'array_size': 2},
+               {'name': 'defaulted', 'type': 'int64', 'default': '-40000000'},
+               {'name': 'defaulted_f', 'type': 'float32', 'array_size': 2,
+                'default': [1.125, -1.125]}])},
+    },
+}
+FULL = {
+    'bool_v': True, 'byte_v': 255, 'char_v': 65, 'int8_v': -128, 'uint8_v': 200,
+    'int16_v': -30000, 'uint16_v': 60000, 'int32_v': -2 ** 31, 'uint32_v': 2 ** 32 - 1,
+    'int64_v': -2 ** 62 - 5, 'uint64_v': 2 ** 64 - 1, 'float32_v': 0.5, 'float64_v': None,
+    'string_v': 'héllo ☃', 'bool_seq': [True, False], 'byte_seq': [1, 2, 250],
+    'char_seq': base64.b64encode(b'AB').decode(), 'int8_seq': [-1, 2],
+    'uint8_seq': base64.b64encode(bytes(range(256))).decode(), 'int16_seq': [-2, 3],
+    'uint16_seq': [65535], 'int32_seq': [7, -7], 'uint32_seq': [1, 2, 3],
+    'int64_seq': [2 ** 63 - 1, -2 ** 63], 'uint64_seq': ['18446744073709551615', 0],
+    'float32_seq': [1.5, -2.25], 'float64_seq': [3.141592653589793, None, 1e300],
+    'string_seq': ['a', ''], 'bool_arr': [False, True], 'byte_arr': [0, 1], 'char_arr': 'AAE=',
+    'int8_arr': [1, -1], 'uint8_arr': 'CQo=', 'int16_arr': [1, 2], 'uint16_arr': [3, 4],
+    'int32_arr': [5, 6], 'uint32_arr': [7, 8], 'int64_arr': [9, 10], 'uint64_arr': [11, 12],
+    'float32_arr': [0.25, 8], 'float64_arr': [1, 2.5], 'string_arr': ['x', 'y'],
+    'time': {'sec': 12, 'nanosec': 34}, 'times': [{'sec': 1, 'nanosec': 2}],
+    'fixed_times': [{'sec': 3, 'nanosec': 4}, {'sec': 5, 'nanosec': 6}], 'defaulted': 3,
+    'defaulted_f': [0.5, 0.75],
+}
+
+
+def _node(payload):
+    node = shutil.which('node')
+    if not node:
+        pytest.skip('Node.js 20 is needed (apt-get install nodejs)')
+    result = subprocess.run([node, str(JS / 'relay_forms.mjs')], input=json.dumps(payload),
+                            cwd=str(JS), capture_output=True, text=True, timeout=60)
+    assert result.returncode == 0, result.stderr[-3000:]
+    return json.loads(result.stdout)
+
+
+@pytest.fixture(scope='module')
+def node_forms():
+    """The Node.js server's forms of the cases below."""
+    cases = [{'type': 't/msg/All', 'json': FULL}, {'type': 't/msg/All', 'json': {}},
+             {'type': 't/msg/All', 'json': {'int64_v': '123', 'times': [{}, {'sec': -1}]}}]
+    texts = ['{"op":"publish","topic":"/chatter","msg":{"data":"hello world 7"}}', '', 'x',
+             json.dumps({'op': 'publish', 'msg': {'data': 'ü' * 5000}}, ensure_ascii=False)]
+    cdr = [{'topic': '/chatter', 'hex': '000100000e00000068656c6c6f20776f726c64203700',
+            'timeMs': 1700000000123.5, 'ttl': None},
+           {'topic': '/t', 'hex': '', 'timeMs': 5, 'ttl': 250}]
+    return cases, texts, cdr, _node({'types': TYPES, 'cases': cases, 'texts': texts, 'cdr': cdr})
+
+
+def test_cbor_form_is_the_node_servers(node_forms):
+    """Every kind of field (scalars, sequences, arrays, nested, defaults) in the same bytes."""
+    cases, _, _, out = node_forms
+    forms = relay_forms.Forms(TYPES['messages'])
+    for case, expected in zip(cases, out['cbor']):
+        got = forms.cbor_message(case['type'], case['json']).hex()
+        assert got == expected, (case, got, expected)
+    # the publish op around it is topics.mjs's cborPublish: {op, topic, msg}
+    whole = forms.cbor_publish('/x', 't/msg/All', FULL)
+    head = bytes([0xa3, 0x62]) + b'op' + bytes([0x67]) + b'publish' + bytes([0x65]) + b'topic'
+    assert whole.startswith(head + bytes([0x62]) + b'/x' + bytes([0x63]) + b'msg')
+    assert whole.endswith(bytes.fromhex(out['cbor'][0]))
+
+
+def test_cbor_form_errors_name_the_field():
+    """A value that does not fit is a FormError naming the field."""
+    forms = relay_forms.Forms(TYPES['messages'])
+    with pytest.raises(relay_forms.FormError, match="field 'int32_seq': expected an array"):
+        forms.cbor_message('t/msg/All', {'int32_seq': 5})
+    with pytest.raises(relay_forms.FormError, match=r"field 'times\[0\].sec': expected an int"):
+        forms.cbor_message('t/msg/All', {'times': [{'sec': 'x'}]})
+    with pytest.raises(relay_forms.FormError, match='no type description'):
+        forms.cbor_message('t/msg/Nope', {})
+
+
+def _png_parts(b64):
+    png = base64.b64decode(b64)
+    assert png[:8] == b'\x89PNG\r\n\x1a\n'
+    chunks, pos = [], 8
+    while pos < len(png):
+        n, = struct.unpack('>I', png[pos:pos + 4])
+        kind, data = png[pos + 4:pos + 8], png[pos + 8:pos + 8 + n]
+        assert struct.unpack('>I', png[pos + 8 + n:pos + 12 + n])[0] == zlib.crc32(kind + data)
+        chunks.append((kind, zlib.decompress(data) if kind == b'IDAT' else data))
+        pos += 12 + n
+    return chunks
+
+
+def test_png_is_png_mjs(node_forms):
+    """
+    png.mjs' PNG: the same chunks, IHDR and (inflated) rows; the text padded with newlines.
+
+    The deflate streams themselves differ (Node.js bundles Chromium's zlib,
+    Python links the system's); both inflate to the same bytes.
+    """
+    _, texts, _, out = node_forms
+    for text, expected in zip(texts, out['png']):
+        got = _png_parts(relay_forms.png_encode_text(text))
+        assert got == _png_parts(expected), text[:40]
+        assert [k for k, _ in got] == [b'IHDR', b'IDAT', b'IEND']
+        width, height = struct.unpack('>II', got[0][1][:8])
+        raw = got[1][1]
+        pixels = b''.join(raw[y * (width * 3 + 1) + 1:(y + 1) * (width * 3 + 1)]
+                          for y in range(height))
+        assert pixels.rstrip(b'\n') == text.encode('utf-8').rstrip(b'\n')
+
+
+def test_client_cdr_publish_is_a_raw_publish_for_the_relay(node_forms):
+    """client_topics.mjs' CBOR publish of CDR decodes as one raw publish; cbor-raw out matches."""
+    from colcon_wasm.server.relay import _raw_publish
+    _, _, cdr, out = node_forms
+    for item, hexed in zip(cdr, out['cdr']):
+        msg = relay_forms.decode_request(bytes.fromhex(hexed))
+        assert _raw_publish(msg), msg
+        assert msg['topic'] == item['topic'] and msg['msg']['bytes'] == bytes.fromhex(item['hex'])
+        assert msg['msg']['secs'] == int(item['timeMs'] // 1000)
+        assert msg.get('ttl') == item['ttl']
+    raw = relay_forms.cbor_raw_publish('/c', b'\x01\x02', 3, 4)
+    assert relay_forms.decode_request(raw) == {
+        'op': 'publish', 'topic': '/c', 'msg': {'secs': 3, 'nsecs': 4, 'bytes': b'\x01\x02'}}
+
+
+def test_bad_binary_and_cbor_requests():
+    """Not CBOR, or more than one item: ValueError saying so; CBOR bytes become base64."""
+    for bad in (b'\xff\xfe', b'\x82\x01', b'\x01\x02'):
+        with pytest.raises(ValueError, match='not CBOR|not one CBOR item'):
+            relay_forms.decode_request(bad)
+    value = relay_forms.decode_request(bytes.fromhex('a2616142010261624401000000'))
+    assert value == {'a': b'\x01\x02', 'b': b'\x01\x00\x00\x00'}
+    tagged = relay_forms.decode_request(bytes.fromhex('a16176d84e4808000000f9ffffff'))
+    assert relay_forms.jsonable(tagged) == {'v': [8, -7]}
+    assert relay_forms.jsonable(value) == {'a': 'AQI=', 'b': 'AQAAAA=='}
+
+
+def test_fragments_join_to_the_text():
+    """fragment_size: ops whose data joins to the text (session.mjs's form)."""
+    text = json.dumps({'op': 'publish', 'msg': {'data': 'y' * 95}})
+    parts = [json.loads(p) for p in relay_forms.fragments(text, 30, 'f1')]
+    assert [p['num'] for p in parts] == list(range(len(parts)))
+    assert len(parts) == (len(text) + 29) // 30 and {p['total'] for p in parts} == {len(parts)} and {p['id'] for p in parts} == {'f1'}
+    assert ''.join(p['data'] for p in parts) == text
+    assert relay_forms.fragments(text, None, None) == [text]
+
+
+# ------------------------------------------------------------ subscriptions over a socket
+
+
+class Client:
+    """The client end of a relay connection: masked frames out, frames in."""
+
+    def __init__(self, relay=None, sock=None):
+        """Serve one end of a socket pair with ``relay``, or use a connected ``sock``."""
+        import threading
+        if sock is None:
+            sock, server_side = socket.socketpair()
+            threading.Thread(target=relay.serve, args=(server_side, 'test'),
+                             daemon=True).start()
+        self.sock = sock
+        self.sock.settimeout(5)
+        self.buffer = b''
+
+    @classmethod
+    def connect(cls, url):
+        """Open ws://HOST:PORT (the WebSocket handshake, then frames)."""
+        host, port = url[len('ws://'):].rstrip('/').rsplit(':', 1)
+        sock = socket.create_connection((host, int(port)), timeout=5)
+        sock.sendall(('GET / HTTP/1.1\r\nHost: {}:{}\r\nUpgrade: websocket\r\n'
+                      'Connection: Upgrade\r\nSec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\n'
+                      'Sec-WebSocket-Version: 13\r\n\r\n').format(host, port).encode())
+        client = cls(sock=sock)
+        response = b''
+        while b'\r\n\r\n' not in response:
+            chunk = sock.recv(4096)
+            assert chunk, 'the relay closed during the handshake: {!r}'.format(response)
+            response += chunk
+        head, client.buffer = response.split(b'\r\n\r\n', 1)
+        assert head.startswith(b'HTTP/1.1 101'), head
+        return client
+
+    def send(self, obj, binary=False):
+        """Send one message (a dict as JSON text, bytes as binary)."""
+        payload = obj if binary else json.dumps(obj).encode('utf-8')
+        n = len(payload)
+        head = bytes([0x82 if binary else 0x81])
+        if n < 126:
+            head += bytes([0x80 | n])
+        elif n < 65536:
+            head += struct.pack('>BH', 0x80 | 126, n)
+        else:
+            head += struct.pack('>BQ', 0x80 | 127, n)
+        self.sock.sendall(head + b'\0\0\0\0' + payload)
+
+    def _read(self, n):
+        while len(self.buffer) < n:
+            chunk = self.sock.recv(65536)
+            if not chunk:
+                raise ConnectionError('closed')
+            self.buffer += chunk
+        out, self.buffer = self.buffer[:n], self.buffer[n:]
+        return out
+
+    def receive(self, timeout=5):
+        """Return the next message (dict), or None within ``timeout``."""
+        self.sock.settimeout(timeout)
+        try:
+            b0, b1 = self._read(2)
+        except socket.timeout:
+            return None
+        n = b1 & 0x7f
+        if n == 126:
+            n, = struct.unpack('>H', self._read(2))
+        elif n == 127:
+            n, = struct.unpack('>Q', self._read(8))
+        payload = self._read(n)
+        if b0 & 0x0f == 2:
+            return relay_forms.decode_request(payload)
+        return json.loads(payload)
+
+    def until(self, predicate, timeout=5):
+        """Return the first message that matches, skipping others."""
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline:
+            m = self.receive(deadline - time.monotonic())
+            if m is not None and predicate(m):
+                return m
+        return None
+
+
+@pytest.fixture
+def relay():
+    """A relay of the test types."""
+    r = Relay(types=[TYPES])
+    yield r
+    r.close()
+
+
+def test_queue_length_and_throttle_send_the_newest_one_per_period(relay):
+    """queue_length 1 with throttle_rate 300: the newest waits, one per 300 ms."""
+    pub, sub = Client(relay), Client(relay)
+    for c in (pub, sub):
+        assert c.receive()['op'] == 'colcon_wasm_relay'
+    sub.send({'op': 'subscribe', 'topic': '/q', 'type': 't/msg/Time', 'throttle_rate': 300,
+              'queue_length': 1})
+    pub.send({'op': 'advertise', 'topic': '/q', 'type': 't/msg/Time'})
+    time.sleep(0.2)
+    got = []
+
+    def read():
+        while True:
+            m = sub.receive(1.0)
+            if m is None:
+                return
+            got.append((time.monotonic(), m['msg']['sec']))
+
+    import threading
+    reader = threading.Thread(target=read)
+    reader.start()
+    for i in range(30):
+        pub.send({'op': 'publish', 'topic': '/q', 'msg': {'sec': i, 'nanosec': 0}})
+        time.sleep(0.03)
+    reader.join(10)
+    secs = [s for _, s in got]
+    assert secs[0] == 0 and secs[-1] == 29, secs
+    assert 3 <= len(secs) <= 7, secs  # about 1 s of messages, one per 0.3 s
+    gaps = [b[0] - a[0] for a, b in zip(got, got[1:])]
+    assert all(g >= 0.25 for g in gaps), gaps
+    steps = [b - a for a, b in zip(secs, secs[1:])]
+    assert all(s > 1 for s in steps), steps  # the newest, not the next
+
+
+def test_forms_cdr_routing_and_cbor_raw_fallback(relay):
+    """colcon_wasm_forms follow the subscribers; CDR goes to cbor-raw, JSON to the rest."""
+    wasm, raw, js = Client(relay), Client(relay), Client(relay)
+    for c in (wasm, raw, js):
+        c.receive()
+    wasm.send({'op': 'advertise', 'topic': '/f', 'type': 't/msg/Time'})
+    wasm.send({'op': 'colcon_wasm_graph', 'nodes': ['/n'], 'version': 2})
+    forms = wasm.until(lambda m: m['op'] == 'colcon_wasm_forms')
+    assert (forms['json'], forms['cdr']) == (False, False), forms
+    raw.send({'op': 'subscribe', 'topic': '/f', 'compression': 'cbor-raw', 'id': 's1'})
+    assert wasm.until(lambda m: m['op'] == 'colcon_wasm_forms')['cdr'] is True
+    js.send({'op': 'subscribe', 'topic': '/f', 'compression': 'cbor', 'id': 's2'})
+    forms = wasm.until(lambda m: m['op'] == 'colcon_wasm_forms')
+    assert (forms['json'], forms['cdr']) == (True, True), forms
+    cdr = b'\0\1\0\0\5\0\0\0\6\0\0\0'
+    wasm.send(_cbor({'op': 'publish', 'topic': '/f', 'msg': {
+        'bytes': cdr, 'secs': 1, 'nsecs': 2}, 'ttl': 5000}), binary=True)
+    wasm.send({'op': 'publish', 'topic': '/f', 'msg': {'sec': 5, 'nanosec': 6}})
+    got_raw = raw.until(lambda m: m.get('op') == 'publish')
+    assert got_raw['msg'] == {'secs': 1, 'nsecs': 2, 'bytes': cdr} and 0 < got_raw['ttl'] <= 5000
+    got_js = js.until(lambda m: m.get('op') == 'publish')
+    assert got_js == {'op': 'publish', 'topic': '/f', 'msg': {'sec': 5, 'nanosec': 6}}
+    assert raw.receive(0.3) is None  # the JSON copy does not reach the cbor-raw subscriber
+    # a JSON-only publisher (a third-party client): JSON to cbor-raw, with one warning
+    js.send({'op': 'set_level', 'level': 'warning'})
+    raw.send({'op': 'set_level', 'level': 'warning'})
+    js.send({'op': 'advertise', 'topic': '/g', 'type': 't/msg/Time'})
+    raw.send({'op': 'subscribe', 'topic': '/g', 'compression': 'cbor-raw', 'id': 'g1'})
+    time.sleep(0.1)
+    for i in range(2):
+        js.send({'op': 'publish', 'topic': '/g', 'msg': {'sec': i, 'nanosec': 0}})
+    seen = [raw.receive(), raw.receive(), raw.receive()]
+    assert [m['op'] for m in seen].count('status') == 1, seen
+    assert [m['msg'] for m in seen if m['op'] == 'publish'] == [
+        {'sec': 0, 'nanosec': 0}, {'sec': 1, 'nanosec': 0}], seen
+    status = next(m for m in seen if m['op'] == 'status')
+    assert 'gives no CDR form' in status['msg'] and status['id'] == 'g1', status
+    # not CBOR: a status error, and the connection stays
+    raw.send(b'\xff\xfe', binary=True)
+    error = raw.until(lambda m: m.get('op') == 'status')
+    assert 'not CBOR' in error['msg'] and error['level'] == 'error', error
+    js.send({'op': 'publish', 'topic': '/g', 'msg': {'sec': 9, 'nanosec': 0}})
+    assert raw.until(lambda m: m.get('op') == 'publish')['msg']['sec'] == 9
+
+
+def _cbor(obj):
+    w = relay_forms.CborWriter()
+    w.value(obj)
+    return w.result()
+
+
+def test_png_fragments_and_binary_limits_on_subscriptions():
+    """png and fragment_size as subscribed; a binary request past the size limit is dropped."""
+    relay = Relay(types=[TYPES], max_message_bytes=400)
+    try:
+        pub, png, frag = Client(relay), Client(relay), Client(relay)
+        for c in (pub, png, frag):
+            c.receive()
+        pub.send({'op': 'advertise', 'topic': '/p', 'type': 't/msg/Time'})
+        png.send({'op': 'subscribe', 'topic': '/p', 'compression': 'png'})
+        frag.send({'op': 'subscribe', 'topic': '/p', 'fragment_size': 100, 'id': 'a'})
+        frag.send({'op': 'subscribe', 'topic': '/p', 'fragment_size': 20, 'id': 'b'})
+        time.sleep(0.1)
+        pub.send({'op': 'publish', 'topic': '/p', 'msg': {'sec': 7, 'nanosec': 8}})
+        m = png.until(lambda m: m.get('op') == 'png')
+        chunks = _png_parts(m['data'])
+        width = struct.unpack('>II', chunks[0][1][:8])[0]
+        rows = chunks[1][1]
+        text = b''.join(rows[i + 1:i + 1 + width * 3] for i in range(0, len(rows), width * 3 + 1))
+        assert json.loads(text.rstrip(b'\n'))['msg'] == {'sec': 7, 'nanosec': 8}
+        parts = [frag.until(lambda m: m.get('op') == 'fragment')]
+        parts += [frag.receive() for _ in range(parts[0]['total'] - 1)]
+        assert all(len(p['data']) <= 20 for p in parts) and parts[0]['total'] > 2, parts
+        assert json.loads(''.join(p['data'] for p in parts))['msg'] == {'sec': 7, 'nanosec': 8}
+        pub.send({'op': 'set_level', 'level': 'warning'})
+        pub.send(_cbor({'op': 'publish', 'topic': '/p', 'msg': {'bytes': b'\0' * 500}}),
+                 binary=True)
+        error = pub.until(lambda m: m.get('op') == 'status')
+        assert 'larger than the limit of 400 bytes' in error['msg'], error
+        pub.send(_cbor({'op': 'publish', 'topic': '/p', 'msg': {'sec': 9, 'nanosec': 0}}),
+                 binary=True)
+        assert png.until(lambda m: m.get('op') == 'png') is not None
+    finally:
+        relay.close()
