@@ -37,9 +37,18 @@ export async function startBags(plan, runtime, { out, err }) {
   if (plan.play) {
     const { Player } = await import('./player.mjs');
     const source = createReadStream(null, { fd: plan.play.fd, highWaterMark: 1 << 20 });
+    // the first message waits (3 s at most) for the launched nodes' subscriptions and
+    // the recorder's, so that they get it
+    const nodes = !!(plan.processes && plan.processes.length);
+    const ready = (graph, name) => {
+      const t = graph.topics.find((x) => x.name === name && x.domain === 0);
+      const subscriptions = t ? t.subscriptions : [];
+      return (!nodes || subscriptions.some((e) => e.pid !== tools.pid))
+        && (!recorder || !recorder.wants(name) || recorder.subscribed.has(name));
+    };
     player = new Player({
       runtime, tools, source, rate: plan.play.rate || 1, clockHz: plan.play.clock || null,
-      waitMs: plan.processes && plan.processes.length ? 3000 : 0, log,
+      waitMs: nodes || recorder ? 3000 : 0, ready, log,
     });
     play = async () => {
       const n = await player.run();

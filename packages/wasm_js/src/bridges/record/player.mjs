@@ -45,11 +45,12 @@ export class Player {
    * @param {number} [options.rate=1]
    * @param {?number} [options.clockHz] publish /clock at this rate
    * @param {number} [options.waitMs=0] before the first message, wait this long at most
-   *   for a subscriber (not of the tools process) on every topic announced so far
+   *   until `ready(graph, topic)` holds for every topic announced so far
+   * @param {function(object, string): boolean} [options.ready]
    * @param {function(string, string): void} options.log (level, text)
    */
-  constructor({ runtime, tools, source, rate = 1, clockHz = null, waitMs = 0, log }) {
-    Object.assign(this, { runtime, tools, source, rate, clockHz, waitMs, log });
+  constructor({ runtime, tools, source, rate = 1, clockHz = null, waitMs = 0, ready = () => true, log }) {
+    Object.assign(this, { runtime, tools, source, rate, clockHz, waitMs, ready, log });
     this.queue = [];
     this.head = 0;
     this.channels = new Map();
@@ -104,11 +105,7 @@ export class Player {
     const topics = [...this.channels.values()].map((c) => c.topic);
     while (!this.stopped && performance.now() < until) {
       const graph = this.runtime.graph();
-      const heard = (name) => {
-        const t = graph.topics.find((x) => x.name === name && x.domain === 0);
-        return t && t.subscriptions.some((e) => e.pid !== this.tools.pid);
-      };
-      if (topics.every(heard)) return;
+      if (topics.every((name) => this.ready(graph, name))) return;
       await sleep(20);
     }
   }

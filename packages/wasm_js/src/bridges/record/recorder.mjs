@@ -36,6 +36,8 @@ export class Recorder {
     this.topics = topics && topics.length ? new Set(topics) : null;
     this.log = log;
     this.channels = new Map();
+    /** topics whose subscription is in place */
+    this.subscribed = new Set();
     this.subscriptions = [];
     this.dropped = 0;
     this.closed = false;
@@ -66,11 +68,16 @@ export class Recorder {
       const qos = subscriptionQos(offered, DEPTH);
       this.subscriptions.push(this.tools.subscribe({ topic: t.name, type, qos, node: this.node }, (batch) => {
         for (const m of batch) this._send(messageFrame(id, m.info.receivedTime, m.info.sourceTime, m.data), true);
-      }).catch((e) => {
+      }).then((s) => { this.subscribed.add(t.name); return s; }).catch((e) => {
         this.log('error', `cannot record '${t.name}': ${e.message}`);
         return null;
       }));
     }
+  }
+
+  /** Does this recorder record this topic (once it has a publisher)? */
+  wants(topic) {
+    return !this.topics || this.topics.has(topic);
   }
 
   _send(frame, droppable = false) {
