@@ -86,13 +86,13 @@ class BagWriter:
     is full, ``failed`` holds the message and later writes are ignored.
     """
 
-    def __init__(self, path, schemas, *, compression='zstd', chunk_size=DEFAULT_CHUNK_SIZE,
+    def __init__(self, path, schemas, *, compression='none', chunk_size=DEFAULT_CHUNK_SIZE,
                  flush_interval=DEFAULT_FLUSH_INTERVAL):
         """
         Create the file and write its header.
 
         :param schemas: :class:`colcon_wasm.ros2msg.Ros2MsgSchemas` of the install
-        :param compression: ``zstd``, ``lz4`` or ``none``
+        :param compression: ``none``, ``zstd`` or ``lz4``
         :raises BagError: when the file cannot be created
         """
         self.path = path

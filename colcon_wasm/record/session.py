@@ -45,8 +45,9 @@ def add_record_arguments(parser):
         '--record-topic', action='append', default=[], metavar='TOPIC',
         help='Record only this topic (repeatable; default: every topic)')
     parser.add_argument(
-        '--record-compression', choices=sorted(COMPRESSIONS), default='zstd',
-        help='Compression of the chunks (default: %(default)s)')
+        '--record-compression', choices=sorted(COMPRESSIONS), default='none',
+        help='Compression of the chunks (default: %(default)s, as ros2 bag record; zstd: '
+             'smaller files for more CPU)')
 
 
 def add_play_arguments(parser, *, option):

@@ -40,6 +40,7 @@ export class Recorder {
     this.subscribed = new Set();
     this.subscriptions = [];
     this.dropped = 0;
+    this.lastBatch = 0;
     this.closed = false;
     this.broken = false;
     sink.on('error', (e) => {
@@ -67,6 +68,7 @@ export class Recorder {
       this._send(jsonFrame(Kind.CHANNEL, { id, topic: t.name, type, qos: offered }));
       const qos = subscriptionQos(offered, DEPTH);
       this.subscriptions.push(this.tools.subscribe({ topic: t.name, type, qos, node: this.node }, (batch) => {
+        this.lastBatch = Date.now();
         for (const m of batch) this._send(messageFrame(id, m.info.receivedTime, m.info.sourceTime, m.data), true);
       }).then((s) => { this.subscribed.add(t.name); return s; }).catch((e) => {
         this.log('error', `cannot record '${t.name}': ${e.message}`);
@@ -93,6 +95,11 @@ export class Recorder {
   async close() {
     if (this.closed) return;
     this.closed = true;
+    // what is on its way from the tools worker is recorded too: wait for a quiet 100 ms (3 s at most)
+    const until = Date.now() + 3000;
+    while (this.lastBatch && Date.now() - this.lastBatch < 100 && Date.now() < until) {
+      await new Promise((resolve) => setTimeout(resolve, 20));
+    }
     const subscriptions = await Promise.all(this.subscriptions);
     await Promise.all(subscriptions.filter(Boolean).map((s) => s.close().catch(() => {})));
     if (this.dropped) {
