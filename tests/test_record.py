@@ -349,3 +349,36 @@ def test_record_options_are_checked(install, tmp_path):
     code, out, err = colcon_wasm('launch', '--install-base', install, '--record',
                                  tmp_path / 'no' / 'such' / 'x.mcap', 'demo_nodes/talker')
     assert code == 1 and 'does not exist' in err, err
+
+
+@pytest.mark.parametrize('compression', ['zstd', 'lz4'])
+def test_compressed_recordings_are_read_by_mcap_and_rosbags(install, tmp_path, compression):
+    path = tmp_path / 'talk.mcap'
+    code, out, err = colcon_wasm('launch', '--install-base', install, '--duration', '3',
+                                 '--record', path, '--record-compression', compression,
+                                 '--record-topic', '/camera/image', 'demo_nodes/camera')
+    assert code == 0, out + err
+    with open(path, 'rb') as f:
+        chunks = mcap_reader.make_reader(f).get_summary().chunk_indexes
+    assert chunks and all(ci.compression == compression for ci in chunks)
+    assert all(ci.compressed_size < ci.uncompressed_size for ci in chunks)
+    frames = mcap_messages(path)
+    assert len(frames) >= 15 and {m[0] for m in frames} == {'/camera/image'}
+    with rosbags_highlevel.AnyReader([path]) as reader:
+        got = [bytes(raw) for _, _, raw in reader.messages()]
+    assert got == [bytes(m[4]) for m in frames]
+
+
+def test_launch_play_and_clock(install, tmp_path):
+    bag = tmp_path / 'bag'
+    _write_rosbags_bag(bag, install, [0, 100, 100, 100], extra_unknown=False)
+    replay = tmp_path / 'replay.mcap'
+    code, out, err = colcon_wasm('launch', '--install-base', install, '--duration', '4',
+                                 '--play', bag, '--clock', '--record', replay,
+                                 'demo_nodes/listener')
+    assert code == 0, out + err
+    assert re.findall(r'I heard: \[played (\d+)\]', out) == ['0', '1', '2', '3'], out
+    # /clock is published with its type; this workspace has no rosgraph_msgs to record it
+    assert "not recording topic '/clock': no type description of " \
+        "'rosgraph_msgs/msg/Clock'" in err, err
+    assert 'process stopped' in out  # the nodes ran on after the bag, up to --duration
