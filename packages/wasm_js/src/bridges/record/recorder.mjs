@@ -69,7 +69,9 @@ export class Recorder {
       const qos = subscriptionQos(offered, DEPTH);
       this.subscriptions.push(this.tools.subscribe({ topic: t.name, type, qos, node: this.node }, (batch) => {
         this.lastBatch = Date.now();
-        for (const m of batch) this._send(messageFrame(id, m.info.receivedTime, m.info.sourceTime, m.data), true);
+        // one write per batch: a write to the pipe is a system call on libuv's thread pool
+        const parts = batch.map((m) => messageFrame(id, m.info.receivedTime, m.info.sourceTime, m.data));
+        this._send(parts.length === 1 ? parts[0] : Buffer.concat(parts), parts.length);
       }).then((s) => { this.subscribed.add(t.name); return s; }).catch((e) => {
         this.log('error', `cannot record '${t.name}': ${e.message}`);
         return null;
@@ -82,10 +84,11 @@ export class Recorder {
     return !this.topics || this.topics.has(topic);
   }
 
-  _send(frame, droppable = false) {
+  /** Write frames to the pipe; `messages` > 0: they are messages, dropped (and counted) past the bound. */
+  _send(frame, messages = 0) {
     if (this.broken) return;
-    if (droppable && this.sink.writableLength > MAX_QUEUED_BYTES) {
-      this.dropped++;
+    if (messages && this.sink.writableLength > MAX_QUEUED_BYTES) {
+      this.dropped += messages;
       return;
     }
     this.sink.write(frame);
