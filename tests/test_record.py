@@ -412,3 +412,16 @@ def test_a_crash_keeps_the_chunks_written_so_far(install, tmp_path):
     assert re.search(r"'.*crash\.mcap' ends at byte \d+ without a Footer record|"
                      r'the Chunk record at byte offset \d+ is cut off', err), err
     assert len(mcap_messages(replay)) == kept
+
+
+def test_loop_plays_the_bag_again(install, tmp_path):
+    bag = tmp_path / 'bag'
+    sent = _write_rosbags_bag(bag, install, [0, 100, 100], extra_unknown=False)
+    replay = tmp_path / 'replay.mcap'
+    code, out, err = colcon_wasm('play', '--install-base', install, '--record', replay,
+                                 '--loop', '--duration', '3', bag)
+    assert code == 0, out + err
+    played = [bytes(m[4]) for m in mcap_messages(replay)]
+    rounds = len(played) // len(sent)
+    assert rounds >= 3, played
+    assert played[:rounds * len(sent)] == [d for _, d in sent] * rounds
