@@ -40,4 +40,5 @@ class PlayCommand(CliExtensionPoint):
             return 1
         return execute(plan, install_base=args.install_base, duration=args.duration,
                        echo=args.echo, print_plan=args.print_plan, command='colcon-wasm play',
-                       bridges=bridges, bags=bags)
+                       bridges=bridges, python=getattr(args, 'python', ()),
+                       pyodide=getattr(args, 'pyodide', None), bags=bags)
