@@ -425,3 +425,38 @@ def test_loop_plays_the_bag_again(install, tmp_path):
     rounds = len(played) // len(sent)
     assert rounds >= 3, played
     assert played[:rounds * len(sent)] == [d for _, d in sent] * rounds
+
+
+HUMBLE_OFFER = (  # as `ros2 bag record -s mcap` on Humble writes a DDS publisher's offer
+    '- history: 3\n  depth: 0\n  reliability: 2\n  durability: 2\n  deadline:\n'
+    '    sec: 9223372036\n    nsec: 854775807\n  lifespan:\n    sec: 9223372036\n'
+    '    nsec: 854775807\n  liveliness: 1\n  liveliness_lease_duration:\n'
+    '    sec: 9223372036\n    nsec: 854775807\n  avoid_ros_namespace_conventions: false')
+IRON_OFFER = (  # Iron and later: policy names
+    '- history: keep_last\n  depth: 7\n  reliability: reliable\n  durability: transient_local\n'
+    '  deadline:\n    sec: 0\n    nsec: 0\n  lifespan:\n    sec: 2\n    nsec: 500000000\n'
+    '  liveliness: automatic\n  liveliness_lease_duration:\n    sec: 0\n    nsec: 0\n'
+    '  avoid_ros_namespace_conventions: false')
+
+
+def test_recorded_offers_become_the_players_qos():
+    from colcon_wasm.record.qos import player_qos, to_rosbag2
+    assert player_qos(HUMBLE_OFFER) == {'history': 'keep_last', 'depth': 10,
+                                        'reliability': 'best_effort', 'durability': 'volatile'}
+    assert player_qos(IRON_OFFER) == {'history': 'keep_last', 'depth': 7,
+                                      'reliability': 'reliable',
+                                      'durability': 'transient_local', 'lifespanMs': 2500.0}
+    # offers that disagree: reliable and volatile, as rosbag2's player falls back
+    both = HUMBLE_OFFER + '\n' + IRON_OFFER
+    assert player_qos(both)['reliability'] == 'reliable'
+    assert player_qos(both)['durability'] == 'volatile'
+    assert player_qos('') == {'history': 'keep_last', 'depth': 10, 'reliability': 'reliable',
+                              'durability': 'volatile'}
+    # what the recorder writes reads back the same, and rosbags reads it
+    text = to_rosbag2([{'history': 'keep_last', 'depth': 5, 'reliability': 'reliable',
+                        'durability': 'transient_local', 'lifespanMs': 250}])
+    assert player_qos(text) == {'history': 'keep_last', 'depth': 5, 'reliability': 'reliable',
+                                'durability': 'transient_local', 'lifespanMs': 250.0}
+    from rosbags.rosbag2.metadata import parse_qos, QosDurability
+    assert parse_qos(text)[0].durability == QosDurability.TRANSIENT_LOCAL
+    assert parse_qos(text)[0].lifespan.nsec == 250000000
