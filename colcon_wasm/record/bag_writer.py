@@ -140,14 +140,14 @@ class BagWriter:
         return channel
 
     def write(self, channel, log_time, publish_time, data, sequence=0):
-        """Add one message (times in nanoseconds since the epoch)."""
+        """Add one message (times in nanoseconds since the epoch; data: bytes or memoryview)."""
         if self.failed:
             return
         now = time.monotonic()
         if self._chunk_opened is None:
             self._chunk_opened = now
         ok = self._guard(lambda: self._writer.add_message(
-            channel_id=channel, log_time=log_time, data=bytes(data), publish_time=publish_time,
+            channel_id=channel, log_time=log_time, data=data, publish_time=publish_time,
             sequence=sequence), True)
         if not ok:
             return

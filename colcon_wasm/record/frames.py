@@ -58,7 +58,7 @@ def decode_recorded(body):
     :returns: ``(channel, log_time_ns, publish_time_ns, data)``
     """
     channel, log_ms, publish_ms = _RECORDED.unpack_from(body)
-    data = body[_RECORDED.size:]
+    data = memoryview(body)[_RECORDED.size:]  # no copy: an image is a megabyte
     return channel, round(log_ms * 1e6), round(publish_ms * 1e6), data
 
 

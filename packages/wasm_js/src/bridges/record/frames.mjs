@@ -25,7 +25,22 @@ export function jsonFrame(kind, value) {
   return out;
 }
 
-/** A recorded message: channel, log and publish times (ms since the epoch), CDR bytes. */
+/**
+ * The head of a recorded message's frame (channel, log and publish times in ms
+ * since the epoch); the CDR bytes follow it.
+ */
+export function messageHead(channel, logMs, publishMs, length) {
+  const out = new Uint8Array(25);
+  const view = new DataView(out.buffer);
+  view.setUint32(0, 1 + 20 + length, true);
+  out[4] = Kind.MESSAGE;
+  view.setUint32(5, channel, true);
+  view.setFloat64(9, logMs, true);
+  view.setFloat64(17, publishMs, true);
+  return out;
+}
+
+/** A recorded message's whole frame. */
 export function messageFrame(channel, logMs, publishMs, data) {
   const out = new Uint8Array(5 + 20 + data.length);
   const view = new DataView(out.buffer);

@@ -13,7 +13,7 @@
  */
 
 import { subscriptionQos } from '../../tools/graph.mjs';
-import { jsonFrame, Kind, messageFrame } from './frames.mjs';
+import { jsonFrame, Kind, messageHead } from './frames.mjs';
 
 /** Bytes waiting for the pipe beyond which messages are dropped (and counted). */
 const MAX_QUEUED_BYTES = 256 * 1024 * 1024;
@@ -69,9 +69,11 @@ export class Recorder {
       const qos = subscriptionQos(offered, DEPTH);
       this.subscriptions.push(this.tools.subscribe({ topic: t.name, type, qos, node: this.node }, (batch) => {
         this.lastBatch = Date.now();
-        // one write per batch: a write to the pipe is a system call on libuv's thread pool
-        const parts = batch.map((m) => messageFrame(id, m.info.receivedTime, m.info.sourceTime, m.data));
-        this._send(parts.length === 1 ? parts[0] : Buffer.concat(parts), parts.length);
+        // one write per batch (a write to the pipe is a system call on libuv's thread pool),
+        // large payloads not copied: the head and the bytes go out in one writev
+        const parts = [];
+        for (const m of batch) parts.push(messageHead(id, m.info.receivedTime, m.info.sourceTime, m.data.length), m.data);
+        this._sendParts(parts, batch.length);
       }).then((s) => { this.subscribed.add(t.name); return s; }).catch((e) => {
         this.log('error', `cannot record '${t.name}': ${e.message}`);
         return null;
@@ -92,6 +94,18 @@ export class Recorder {
       return;
     }
     this.sink.write(frame);
+  }
+
+  /** Write message frames (heads and payloads) in one go; past the bound they are dropped. */
+  _sendParts(parts, messages) {
+    if (this.broken) return;
+    if (this.sink.writableLength > MAX_QUEUED_BYTES) {
+      this.dropped += messages;
+      return;
+    }
+    this.sink.cork();
+    for (const p of parts) this.sink.write(p);
+    process.nextTick(() => this.sink.uncork());
   }
 
   /** Stop recording: unsubscribe, let what is queued reach the launcher, end the pipe. */
