@@ -13,7 +13,7 @@ REPO = Path(__file__).resolve().parents[1]
 def test_flake8_of_the_launcher_tests():
     """Check style, docstrings, import order and quotes of these test files."""
     prefixes = ('test_serve', 'test_launch', 'test_typedesc', 'test_cdr', 'test_page',
-                'test_pyodide')
+                'test_pyodide', 'test_record')
     paths = sorted(str(p.relative_to(REPO)) for p in REPO.glob('tests/test_*.py')
                    if p.name.startswith(prefixes))
     paths += ['tests/cdr_fastcdr.py', 'tests/demo_build.py', 'packages/wasm_js/src/python/rclpy']

@@ -16,6 +16,9 @@ from colcon_wasm.launch.install_space import InstallSpaceError
 from colcon_wasm.launch.rosbridge import add_rosbridge_arguments
 from colcon_wasm.launch.rosbridge import bridge_plan
 from colcon_wasm.launch.runner import DEFAULT_LOAD_TIMEOUT
+from colcon_wasm.record.session import add_play_arguments
+from colcon_wasm.record.session import add_record_arguments
+from colcon_wasm.record.session import bag_plan
 
 
 def _positive(text):
@@ -49,6 +52,7 @@ def add_runtime_arguments(parser):
              'else the one colcon-wasm doctor names)')
     add_rosbridge_arguments(parser)
     add_foxglove_arguments(parser)
+    add_record_arguments(parser)
 
 
 class LaunchCommand(CliExtensionPoint):
@@ -56,6 +60,7 @@ class LaunchCommand(CliExtensionPoint):
 
     def add_arguments(self, *, parser):  # noqa: D102
         add_runtime_arguments(parser)
+        add_play_arguments(parser, option=True)
         parser.add_argument(
             '--load-timeout', type=_positive, default=DEFAULT_LOAD_TIMEOUT, metavar='S',
             help="How long to wait for a container's load_node service, and for each "
@@ -71,10 +76,11 @@ class LaunchCommand(CliExtensionPoint):
                 else LaunchPlan()
             bridges = bridge_plan(args, err=sys.stderr)
             bridges.update(foxglove_plan(args, err=sys.stderr))
+            bags = bag_plan(args)
         except (LaunchError, InstallSpaceError) as e:
             print('colcon-wasm launch: {}'.format(e), file=sys.stderr)
             return 1
         return execute(plan, install_base=args.install_base, duration=args.duration,
                        echo=args.echo, print_plan=args.print_plan,
                        command='colcon-wasm launch', load_timeout=args.load_timeout,
-                       bridges=bridges, python=args.python, pyodide=args.pyodide)
+                       bridges=bridges, python=args.python, pyodide=args.pyodide, bags=bags)

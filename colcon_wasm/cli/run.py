@@ -14,6 +14,7 @@ from colcon_wasm.launch import NodeProcess
 from colcon_wasm.launch.command import execute
 from colcon_wasm.launch.foxglove import foxglove_plan
 from colcon_wasm.launch.rosbridge import bridge_plan
+from colcon_wasm.record.session import bag_plan
 
 
 class RunCommand(CliExtensionPoint):
@@ -43,9 +44,11 @@ class RunCommand(CliExtensionPoint):
         try:
             bridges = bridge_plan(args, err=sys.stderr)
             bridges.update(foxglove_plan(args, err=sys.stderr))
+            bags = bag_plan(args)
         except LaunchError as e:
             print('colcon-wasm run: {}'.format(e), file=sys.stderr)
             return 1
         return execute(plan, install_base=args.install_base, duration=args.duration,
                        echo=args.echo, print_plan=args.print_plan, command='colcon-wasm run',
-                       stdin=True, bridges=bridges, python=args.python, pyodide=args.pyodide)
+                       stdin=True, bridges=bridges, python=args.python, pyodide=args.pyodide,
+                       bags=bags)

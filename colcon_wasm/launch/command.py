@@ -66,7 +66,7 @@ def _add_python_nodes(description, python, install_space, bases, pyodide, print_
 
 def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, command,
             out=None, err=None, stdin=False, load_timeout=DEFAULT_LOAD_TIMEOUT,
-            bases=None, bridges=None, python=(), pyodide=None):
+            bases=None, bridges=None, python=(), pyodide=None, bags=None):
     """
     Resolve a plan against the install space and run it in Node.js (or print it).
 
@@ -79,6 +79,7 @@ def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, com
     (``colcon_wasm.launch.foxglove.foxglove_plan``).
     ``python``: Python scripts run as nodes next to the plan's processes, with
     the Pyodide folder ``pyodide`` (default: ``find_pyodide``'s lookup).
+    ``bags``: what to record and play (``colcon_wasm.record.session.bag_plan``).
 
     :returns: the exit status (1 for bad input, else the Node host's)
     """
@@ -110,8 +111,15 @@ def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, com
     try:
         bundled = resources.path('packages') / 'wasm_js' / 'src'
         runtime_dir, _ = find_runtime(install_space, bundled)
-        with schema_file(description, install_space):
-            return run_host(description, runtime_dir / runtime_entry(runtime_dir), bundled)
+        from colcon_wasm.record.session import bag_session
+        with schema_file(description, install_space), \
+                bag_session(bags, install_space, err) as session:
+            if session is None:
+                return run_host(description, runtime_dir / runtime_entry(runtime_dir), bundled)
+            description.update(session.host_plan)
+            status = run_host(description, runtime_dir / runtime_entry(runtime_dir), bundled,
+                              pass_fds=session.fds, started=session.host_started)
+            return session.finish(status)
     except (LaunchError, ServeError) as e:
         print('{}: {}'.format(command, e), file=err)
         return 1

@@ -133,7 +133,8 @@ def host_plan(plan, install_space, *, duration=None, echo=(), stdin=False,
     }
 
 
-def run_host(description, runtime_module, host_dir, *, node=None, stdout=None, stderr=None):
+def run_host(description, runtime_module, host_dir, *, node=None, stdout=None, stderr=None,
+             pass_fds=(), started=None):
     """
     Run the Node host on a plan description and return its exit status.
 
@@ -141,7 +142,8 @@ def run_host(description, runtime_module, host_dir, *, node=None, stdout=None, s
     plan); the Runtime it imports is the install space's (``runtime_module``,
     it matches the executables). Ctrl-C reaches the host (same process
     group); this process waits for it to stop its nodes, so the host's status
-    is the command's status.
+    is the command's status. ``pass_fds`` go to the host (record and replay
+    pipes); ``started()`` is called once it runs.
     """
     script = Path(host_dir) / HOST_SCRIPT
     if not script.is_file():
@@ -151,8 +153,10 @@ def run_host(description, runtime_module, host_dir, *, node=None, stdout=None, s
     main_thread = threading.current_thread() is threading.main_thread()
     previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main_thread else None
     try:
-        process = subprocess.Popen(command, stdout=stdout, stderr=stderr,
+        process = subprocess.Popen(command, stdout=stdout, stderr=stderr, pass_fds=pass_fds,
                                    preexec_fn=_default_sigint if main_thread else None)
+        if started:
+            started()
         return process.wait()
     finally:
         if main_thread:

@@ -15,7 +15,9 @@
  * Composable nodes (`plan.loads`) are loaded into their containers once the
  * processes have started (./composable.mjs). `plan.rosbridge` and
  * `plan.rosbridge_connect` start the rosbridge server and client first, `plan.foxglove`
- * the Foxglove server (../bridges/rosbridge/launch.mjs).
+ * the Foxglove server (../bridges/rosbridge/launch.mjs). `plan.record` / `plan.play` record the
+ * bus and replay a bag (../bridges/record/launch.mjs): recording starts
+ * before the processes and ends after them, playing after they started.
  * The exit status is 1 when a process crashed or exited with a non-zero
  * code, or a composable node failed to load, 0 otherwise.
  */
@@ -115,6 +117,12 @@ async function main() {
       return 1;
     }
   }
+  // --record, --play (bridges/record/): the recorder taps the bus before any process
+  let bags = null;
+  if (plan.record || plan.play) {
+    const { startBags } = await import('../bridges/record/launch.mjs');
+    bags = await startBags(plan, runtime, { out, err });
+  }
   const handles = new Map();
   const states = new Map();
   let failed = false;
@@ -191,6 +199,18 @@ async function main() {
     });
   }
 
+  if (bags && bags.play) {
+    pendingLoads++;
+    bags.play().catch((e) => {
+      failed = true;
+      err(`[ERROR] [rosbag2]: playing failed: ${e && e.stack ? e.stack : e}`);
+    }).finally(() => {
+      pendingLoads--;
+      if (plan.play.stop_after) stopAll('the bag has played');
+      checkDone();
+    });
+  }
+
   const stopAll = async (why) => {
     if (stopping) return;
     stopping = true;
@@ -210,6 +230,8 @@ async function main() {
         out(`[INFO] [${label}]: process stopped`);
       }
     }));
+    // what the processes published last is recorded
+    if (bags) await bags.close();
     checkDone();
   };
 
@@ -225,6 +247,7 @@ async function main() {
   checkDone();
   await done;
   if (bridges) await bridges.close(); // closing twice is harmless
+  if (bags) await bags.close();
   if (runtime.close) await runtime.close();
   return failed ? 1 : 0;
 }

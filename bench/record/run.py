@@ -1,0 +1,142 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""
+Benchmark record and replay (docs/record.md).
+
+    python bench/record/run.py INSTALL_WASM [--seconds S]
+
+INSTALL_WASM: a ``colcon build --wasm`` of demo/src. Two measures:
+
+- replay speed of small messages: a bag of 1 kHz ``Chatter`` messages,
+  written by ``rosbags``, played as fast as it goes (``--rate 100000``) while
+  the replay is recorded; speed = bag length / time from first to last
+  message on the bus;
+- record CPU overhead: the talker at 1 kHz and the camera at 30 Hz
+  640x480 rgb8 for S seconds, CPU time (user + system of the command and
+  its children) with and without ``--record``, and messages lost.
+
+Prints a Markdown table.
+"""
+
+import argparse
+from pathlib import Path
+import re
+import resource
+import subprocess
+import sys
+import tempfile
+import time
+
+CHATTER = 'demo_interfaces/msg/Chatter'
+
+
+def colcon_wasm(*args):
+    """Run colcon-wasm; return (exit status, stdout, stderr, CPU seconds, wall seconds)."""
+    tool = Path(sys.executable).parent / 'colcon-wasm'
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    started = time.monotonic()
+    r = subprocess.run([str(tool), *map(str, args)], capture_output=True, text=True,
+                       timeout=900)
+    wall = time.monotonic() - started
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    return r.returncode, r.stdout, r.stderr, cpu, wall
+
+
+def small_bag(path, install, count, period_ns):
+    """Write `count` Chatter messages `period_ns` apart with rosbags."""
+    from rosbags.rosbag2 import StoragePlugin, Writer
+    from rosbags.typesys import get_typestore, get_types_from_msg, Stores
+    typestore = get_typestore(Stores.EMPTY)
+    msgdef = (Path(install).parent / 'src' / 'demo_interfaces' / 'msg' / 'Chatter.msg')
+    typestore.register(get_types_from_msg(msgdef.read_text(), CHATTER))
+    Chatter = typestore.types[CHATTER]
+    with Writer(path, version=8, storage_plugin=StoragePlugin.MCAP) as writer:
+        c = writer.add_connection('/chatter', CHATTER, typestore=typestore)
+        for i in range(count):
+            writer.write(c, 1_700_000_000_000_000_000 + i * period_ns, typestore.serialize_cdr(
+                Chatter(data='Hello World: {}'.format(i), count=i), CHATTER))
+
+
+def times(path, topic):
+    """Log times of a topic's messages (mcap)."""
+    from mcap.reader import make_reader
+    with open(path, 'rb') as f:
+        return [m.log_time for _, c, m in make_reader(f).iter_messages(log_time_order=False)
+                if c.topic == topic]
+
+
+def counted(path):
+    """(count, log time) of the Chatter messages of a bag (mcap + mcap-ros2-support)."""
+    from mcap.reader import make_reader
+    from mcap_ros2.decoder import DecoderFactory
+    with open(path, 'rb') as f:
+        reader = make_reader(f, decoder_factories=[DecoderFactory()])
+        return [(d.count, m.log_time) for _, c, m, d in
+                reader.iter_decoded_messages(log_time_order=False) if c.topic == '/chatter']
+
+
+def main():
+    """Run the benchmark."""
+    parser = argparse.ArgumentParser()
+    parser.add_argument('install')
+    parser.add_argument('--seconds', type=float, default=20)
+    parser.add_argument('--messages', type=int, default=20000)
+    args = parser.parse_args()
+    work = Path(tempfile.mkdtemp(prefix='bench-record-'))
+    rows = []
+
+    bag = work / 'small'
+    small_bag(bag, args.install, args.messages, 1_000_000)
+    length = (args.messages - 1) / 1000
+    for rate in ('20', '100000'):
+        replay = work / 'replay{}.mcap'.format(rate)
+        code, out, err, cpu, wall = colcon_wasm('play', '--install-base', args.install,
+                                                '--record', replay, '--rate', rate, bag)
+        assert code == 0, out + err
+        # the speed between the first and the last message the recorder kept (their
+        # counts say how much bag time lies between them)
+        seen = counted(replay)
+        (first, t0), (last, t1) = seen[0], seen[-1]
+        span = (t1 - t0) / 1e9
+        played = re.search(r'played (\d+) messages', out + err)
+        rows.append(('replay, {} small messages (a 1 kHz bag of {:.0f} s), --rate {}'.format(
+            args.messages, length, rate), '{:.0f}x real time ({} published in {:.2f} s; '
+            '{:.1f} s for the command; the recorder, in the same tools worker, kept {})'.format(
+                (last - first) / 1000 / span, played.group(1) if played else '?', span, wall,
+                len(seen)), '>= 20x'))
+
+    launch = work / 'load.launch.yaml'
+    launch.write_text(
+        'launch:\n'
+        '- node: {pkg: demo_nodes, exec: talker, param: [{name: rate, value: 1000.0}]}\n'
+        '- node:\n    pkg: demo_nodes\n    exec: camera\n    param:\n'
+        '    - {name: rate, value: 30.0}\n    - {name: width, value: 640.0}\n'
+        '    - {name: height, value: 480.0}\n')
+    code, out, err, base_cpu, _ = colcon_wasm('launch', '--install-base', args.install,
+                                              '--duration', args.seconds, launch)
+    assert code == 0, out + err
+    recorded = work / 'load.mcap'
+    code, out, err, rec_cpu, _ = colcon_wasm('launch', '--install-base', args.install,
+                                             '--duration', args.seconds, '--record', recorded,
+                                             launch)
+    assert code == 0, out + err
+    chatter = times(recorded, '/chatter')
+    frames = times(recorded, '/camera/image')
+    published = len([1 for line in out.splitlines() if 'Publishing:' in line])
+    overhead = (rec_cpu - base_cpu) / args.seconds * 100
+    rows.append(('record 1 kHz talker + 30 Hz 640x480 rgb8 for {:.0f} s'.format(args.seconds),
+                 '{:+.0f} % of one core ({:.1f} s CPU without, {:.1f} s with --record); '
+                 '{} chatter messages recorded of {} logged, {} frames ({:.1f} Hz)'.format(
+                     overhead, base_cpu, rec_cpu, len(chatter), published, len(frames),
+                     len(frames) / args.seconds),
+                 'no loss, <= 5 % CPU'))
+    print('| measure | result | goal |')
+    print('|---|---|---|')
+    for r in rows:
+        print('| {} | {} | {} |'.format(*r))
+
+
+if __name__ == '__main__':
+    main()

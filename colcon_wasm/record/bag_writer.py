@@ -1,0 +1,234 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""
+Write a bag: rosbag2's MCAP layout, with Foxglove's ``mcap`` writer.
+
+As Humble's rosbag2_storage_mcap writes it: profile ``ros2``; one schema per
+type (encoding ``ros2msg``, the complete definition of
+:mod:`colcon_wasm.ros2msg`); one channel per topic (encoding ``cdr``,
+metadata ``offered_qos_profiles``); messages with their log and publish
+times; chunked, with message indexes and a summary. Like rosbag2 from Iron
+on (and rosbags), a metadata record ``rosbag2`` holds ``serialized_metadata``,
+the bag's metadata.yaml.
+
+The file is written as it goes: a chunk is closed when it is full or
+``flush_interval`` seconds after its first message, and goes to the file at
+once (unbuffered). A crash loses at most the open chunk; the file up to it
+is readable by stream readers. When the disk is full (or the file size
+limit is reached) the partly written record is cut off and a footer is
+written when there is room for it, so the file ends after its last whole
+chunk.
+"""
+
+import errno
+import os
+import time
+
+from colcon_wasm import __version__
+from colcon_wasm.record import BagError
+from colcon_wasm.record.qos import to_rosbag2
+from mcap.data_stream import RecordBuilder
+from mcap.records import DataEnd
+from mcap.records import Footer
+from mcap.writer import CompressionType
+from mcap.writer import MCAP0_MAGIC
+from mcap.writer import Writer
+import yaml
+
+COMPRESSIONS = {'none': CompressionType.NONE, 'zstd': CompressionType.ZSTD,
+                'lz4': CompressionType.LZ4}
+DEFAULT_CHUNK_SIZE = 1024 * 1024
+DEFAULT_FLUSH_INTERVAL = 1.0
+_FULL = (errno.ENOSPC, errno.EFBIG, errno.EDQUOT)
+
+
+class _FileSink:
+    """An unbuffered file the mcap writer writes to; it knows the last whole write."""
+
+    def __init__(self, path):
+        self.path = path
+        self.fd = os.open(str(path), os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
+        self.position = 0
+        # the end of the last write that reached the file whole (each write of
+        # the mcap writer is whole records)
+        self.good = 0
+
+    def write(self, data):
+        view = memoryview(data)
+        while view:
+            n = os.write(self.fd, view)
+            self.position += n
+            view = view[n:]
+        self.good = self.position
+        return len(data)
+
+    def tell(self):
+        return self.position
+
+    def flush(self):
+        pass
+
+    def cut_to_good(self):
+        os.ftruncate(self.fd, self.good)
+        os.lseek(self.fd, self.good, os.SEEK_SET)
+        self.position = self.good
+
+    def close(self):
+        os.close(self.fd)
+
+
+class BagWriter:
+    """
+    One MCAP file being recorded.
+
+    ``add_topic`` then ``write``; ``close`` writes the summary. Once the disk
+    is full, ``failed`` holds the message and later writes are ignored.
+    """
+
+    def __init__(self, path, schemas, *, compression='none', chunk_size=DEFAULT_CHUNK_SIZE,
+                 flush_interval=DEFAULT_FLUSH_INTERVAL):
+        """
+        Create the file and write its header.
+
+        :param schemas: :class:`colcon_wasm.ros2msg.Ros2MsgSchemas` of the install
+        :param compression: ``none``, ``zstd`` or ``lz4``
+        :raises BagError: when the file cannot be created
+        """
+        self.path = path
+        self._schemas = schemas
+        self._flush_interval = flush_interval
+        try:
+            self._sink = _FileSink(path)
+        except OSError as e:
+            raise BagError("cannot create the bag '{}': {}".format(path, e.strerror)) from None
+        self._writer = Writer(self._sink, chunk_size=chunk_size,
+                              compression=COMPRESSIONS[compression])
+        self._compression = compression
+        self._schema_ids = {}
+        self._topics = {}
+        self.failed = None
+        self.messages = 0
+        self._first = None
+        self._last = None
+        self._chunk_opened = None
+        self._guard(lambda: self._writer.start(
+            profile='ros2', library='colcon-wasm {}'.format(__version__)))
+
+    def add_topic(self, topic, type_name, qos_profiles):
+        """
+        Add a channel for a topic (and the schema of its type, once).
+
+        :param qos_profiles: the offered QoS of its publishers (JS form)
+        :returns: the channel id, or None for a type without a schema in the
+          install (the reason in ``skipped[topic]``)
+        :raises colcon_wasm.ros2msg.SchemaError: for a type the install does not describe
+        """
+        if self.failed:
+            return None
+        if type_name not in self._schema_ids:
+            text = self._schemas.full_text(type_name)
+            self._schema_ids[type_name] = self._guard(lambda: self._writer.register_schema(
+                name=type_name, encoding='ros2msg', data=text.encode('utf-8')))
+        qos_text = to_rosbag2(qos_profiles)
+        channel = self._guard(lambda: self._writer.register_channel(
+            topic=topic, message_encoding='cdr', schema_id=self._schema_ids[type_name],
+            metadata={'offered_qos_profiles': qos_text}))
+        if channel is not None:
+            self._topics[channel] = {'name': topic, 'type': type_name, 'qos': qos_text,
+                                     'count': 0}
+        return channel
+
+    def write(self, channel, log_time, publish_time, data, sequence=0):
+        """Add one message (times in nanoseconds since the epoch; data: bytes or memoryview)."""
+        if self.failed:
+            return
+        now = time.monotonic()
+        if self._chunk_opened is None:
+            self._chunk_opened = now
+        ok = self._guard(lambda: self._writer.add_message(
+            channel_id=channel, log_time=log_time, data=data, publish_time=publish_time,
+            sequence=sequence), True)
+        if not ok:
+            return
+        self.messages += 1
+        self._topics[channel]['count'] += 1
+        self._first = log_time if self._first is None else min(self._first, log_time)
+        self._last = log_time if self._last is None else max(self._last, log_time)
+        if now - self._chunk_opened >= self._flush_interval:
+            self.flush()
+
+    def flush(self):
+        """Close the open chunk (it goes to the file)."""
+        if self.failed:
+            return
+        self._chunk_opened = None
+        self._guard(self._writer.flush)
+
+    def close(self):
+        """Write the rosbag2 metadata and the summary, and close the file."""
+        if not self.failed:
+            self._guard(self._writer.flush)
+        if not self.failed:
+            self._guard(lambda: self._writer.add_metadata(
+                'rosbag2', {'serialized_metadata': self.metadata_yaml()}))
+        if not self.failed:
+            self._guard(self._writer.finish)
+        self._sink.close()
+
+    def metadata_yaml(self):
+        """Write the bag's metadata.yaml (rosbag2 version 5, as Humble writes it) as text."""
+        start = self._first or 0
+        duration = (self._last - self._first) if self._first is not None else 0
+        name = os.path.basename(str(self.path))
+        info = {
+            'version': 5,
+            'storage_identifier': 'mcap',
+            'duration': {'nanoseconds': duration},
+            'starting_time': {'nanoseconds_since_epoch': start},
+            'message_count': self.messages,
+            'topics_with_message_count': [
+                {'topic_metadata': {'name': t['name'], 'type': t['type'],
+                                    'serialization_format': 'cdr',
+                                    'offered_qos_profiles': t['qos']},
+                 'message_count': t['count']}
+                for t in self._topics.values()],
+            'compression_format': '',
+            'compression_mode': '',
+            'relative_file_paths': [name],
+            'files': [{'path': name, 'starting_time': {'nanoseconds_since_epoch': start},
+                       'duration': {'nanoseconds': duration},
+                       'message_count': self.messages}],
+        }
+        return yaml.safe_dump({'rosbag2_bagfile_information': info}, sort_keys=False)
+
+    def _guard(self, action, default=None):
+        """Run a write; on a full disk end the file after its last whole record."""
+        try:
+            result = action()
+            return default if result is None and default is not None else result
+        except OSError as e:
+            if e.errno not in _FULL:
+                raise
+            self._fail(e)
+            return None
+
+    def _fail(self, error):
+        kept = self._sink.good
+        self._sink.cut_to_good()
+        ended = 'the file ends after its last whole chunk, without a summary'
+        try:
+            builder = RecordBuilder()
+            DataEnd(0).write(builder)
+            Footer(summary_start=0, summary_offset_start=0, summary_crc=0).write(builder)
+            builder.write(MCAP0_MAGIC)
+            self._sink.write(builder.end())
+            ended = 'the file ends after its last whole chunk, with a footer and no summary'
+        except OSError:
+            self._sink.good = kept
+            self._sink.cut_to_good()
+        why = {errno.ENOSPC: 'the disk is full', errno.EFBIG: 'the file size limit is reached',
+               errno.EDQUOT: 'the disk quota is used up'}.get(error.errno, error.strerror)
+        self.failed = ("recording to '{}' stopped: {} ({}) after {} bytes; {} and stays "
+                       'readable (messages kept: those of the chunks written); free some space '
+                       'and record again'.format(self.path, why, error.strerror, kept, ended))

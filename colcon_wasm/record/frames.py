@@ -1,0 +1,90 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""
+The frames between the Node host and the launcher (one pipe each way).
+
+Every frame is ``u32 length`` (of what follows), ``u8 kind``, then the body
+(little endian). packages/wasm_js/src/bridges/record/frames.mjs is the other
+side.
+
+Recording (host to launcher):
+
+- ``CHANNEL``: JSON ``{"id", "topic", "type", "qos": [profile, ...]}``, the
+  offered QoS of the topic's publishers in the JS form of qos.mjs;
+- ``MESSAGE``: ``u32 channel, f64 log_ms, f64 publish_ms`` then the CDR
+  bytes (milliseconds since the epoch, sub-millisecond fraction kept);
+- ``NOTE``: JSON ``{"dropped": N}`` when the host dropped messages.
+
+Playing (launcher to host):
+
+- ``CHANNEL``: JSON ``{"id", "topic", "type", "qos": profile}``;
+- ``MESSAGE``: ``u32 channel, u32 sec, u32 nanosec, f64 offset_ns`` then the
+  CDR bytes: the log time, and its distance from the first message played
+  (loops add the length of the bag to it);
+- ``END``: JSON ``{"messages": N}``: nothing more comes.
+"""
+
+import json
+import struct
+
+CHANNEL = 1
+MESSAGE = 2
+NOTE = 3
+END = 4
+
+_HEAD = struct.Struct('<IB')
+_RECORDED = struct.Struct('<Idd')
+_PLAYED = struct.Struct('<IIId')
+
+
+def encode_json(kind, value):
+    """Frame a JSON body."""
+    body = json.dumps(value).encode('utf-8')
+    return _HEAD.pack(len(body) + 1, kind) + body
+
+
+def encode_played(channel, log_time_ns, offset_ns, data):
+    """Frame one message to play."""
+    sec, nsec = divmod(int(log_time_ns), 1000000000)
+    head = _PLAYED.pack(channel, sec & 0xffffffff, nsec, float(offset_ns))
+    return _HEAD.pack(1 + len(head) + len(data), MESSAGE) + head + bytes(data)
+
+
+def decode_recorded(body):
+    """
+    Decode the body of a recorded MESSAGE frame.
+
+    :returns: ``(channel, log_time_ns, publish_time_ns, data)``
+    """
+    channel, log_ms, publish_ms = _RECORDED.unpack_from(body)
+    data = memoryview(body)[_RECORDED.size:]  # no copy: an image is a megabyte
+    return channel, round(log_ms * 1e6), round(publish_ms * 1e6), data
+
+
+def read_frames(stream):
+    """
+    Yield ``(kind, body)`` from a binary stream until it ends.
+
+    A frame cut off by the end of the stream (the host died) ends it too.
+    """
+    while True:
+        head = _read_exactly(stream, _HEAD.size)
+        if head is None:
+            return
+        length, kind = _HEAD.unpack(head)
+        body = _read_exactly(stream, length - 1)
+        if body is None:
+            return
+        yield kind, body
+
+
+def _read_exactly(stream, size):
+    parts = []
+    while size:
+        part = stream.read(size)
+        if not part:
+            return None
+        parts.append(part)
+        size -= len(part)
+    return b''.join(parts)

@@ -1,0 +1,289 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""
+Record and replay beside a launch: the options, and the launcher's side.
+
+The launcher opens one pipe per direction for the Node host
+(``pass_fds``); a thread writes what the host records into the bag
+(:class:`colcon_wasm.record.bag_writer.BagWriter`), another streams the
+bag to play into the host (:mod:`colcon_wasm.record.bag_reader`). The host
+keeps the timing and publishes (packages/wasm_js/src/bridges/record/).
+"""
+
+import contextlib
+import json
+import os
+import threading
+
+from colcon_wasm.launch.errors import LaunchError
+from colcon_wasm.record import BagError
+from colcon_wasm.record import frames
+from colcon_wasm.record.bag_reader import bag_files
+from colcon_wasm.record.bag_reader import read_messages
+from colcon_wasm.record.bag_writer import BagWriter
+from colcon_wasm.record.bag_writer import COMPRESSIONS
+from colcon_wasm.record.qos import player_qos
+from colcon_wasm.ros2msg import SchemaError
+
+DEFAULT_CLOCK_HZ = 40.0
+
+
+def _positive(text):
+    value = float(text)
+    if value <= 0:
+        raise ValueError(text)
+    return value
+
+
+def add_record_arguments(parser):
+    """Add ``--record`` and its options (run and launch)."""
+    parser.add_argument(
+        '--record', metavar='FILE.mcap',
+        help="Record the bus into FILE.mcap (rosbag2's MCAP layout), as it goes")
+    parser.add_argument(
+        '--record-topic', action='append', default=[], metavar='TOPIC',
+        help='Record only this topic (repeatable; default: every topic)')
+    parser.add_argument(
+        '--record-compression', choices=sorted(COMPRESSIONS), default='none',
+        help='Compression of the chunks (default: %(default)s, as ros2 bag record; zstd: '
+             'smaller files for more CPU)')
+
+
+def add_play_arguments(parser, *, option):
+    """
+    Add the replay options.
+
+    :param option: True for ``launch --play FILE``; False for ``play``, whose
+      bag is its first positional argument (added by the caller)
+    """
+    if option:
+        parser.add_argument(
+            '--play', metavar='BAG',
+            help='Play a bag (.mcap file or rosbag2 directory) into the nodes once they run')
+    parser.add_argument(
+        '--rate', type=_positive, default=1.0, metavar='R',
+        help='Play R times as fast as recorded (default: 1)')
+    parser.add_argument(
+        '--loop', action='store_true', help='Play the bag again and again')
+    parser.add_argument(
+        '--topics', nargs='+', default=None, metavar='TOPIC',
+        help='Play only these topics')
+    parser.add_argument(
+        '--clock', nargs='?', type=_positive, const=DEFAULT_CLOCK_HZ, default=None, metavar='HZ',
+        help='Publish /clock (rosgraph_msgs/msg/Clock) with the bag time at HZ (default {}) '
+             'for use_sim_time nodes'.format(DEFAULT_CLOCK_HZ))
+
+
+def bag_plan(args, *, play=None, stop_after_play=False):
+    """
+    Check the record and replay options.
+
+    :param play: the bag to play (``play``'s argument), else ``args.play``
+    :returns: ``{'record': {...}, 'play': {...}}`` (either may be missing)
+    :raises LaunchError: for a bag that is not there
+    """
+    plan = {}
+    if getattr(args, 'record', None):
+        directory = os.path.dirname(os.path.abspath(args.record)) or '.'
+        if not os.path.isdir(directory):
+            raise LaunchError("--record '{}': the folder '{}' does not exist".format(
+                args.record, directory))
+        plan['record'] = {'path': args.record, 'topics': list(args.record_topic) or None,
+                          'compression': args.record_compression}
+    elif getattr(args, 'record_topic', None):
+        raise LaunchError('--record-topic selects what --record records: add --record FILE.mcap')
+    play = play or getattr(args, 'play', None)
+    if play:
+        try:
+            files = bag_files(play)
+        except BagError as e:
+            raise LaunchError(str(e)) from None
+        plan['play'] = {'path': play, 'files': [str(f) for f in files], 'rate': args.rate,
+                        'loop': args.loop, 'topics': args.topics, 'clock': args.clock,
+                        'stop_after': stop_after_play}
+    return plan
+
+
+class BagSession:
+    """The launcher's side of recording and replay for one run of the host."""
+
+    def __init__(self, plan, install_space, err):
+        """Prepare (nothing runs before ``start``)."""
+        self.plan = plan
+        self.install_space = install_space
+        self.err = err
+        self.fds = []
+        self.host_plan = {}
+        self._threads = []
+        self._close_after_start = []
+        self.failed = False
+
+    def start(self):
+        """Open the pipes and start the threads; ``host_plan`` then holds the host's entries."""
+        if 'record' in self.plan:
+            spec = self.plan['record']
+            try:
+                writer = BagWriter(spec['path'], self.install_space.ros2msg_schemas(),
+                                   compression=spec['compression'])
+            except (BagError, SchemaError) as e:
+                raise LaunchError(str(e)) from None
+            read_end, write_end = os.pipe()
+            self.fds.append(write_end)
+            self._close_after_start.append(write_end)
+            self.host_plan['record'] = {'fd': write_end, 'topics': spec['topics']}
+            self._thread(self._record, writer, os.fdopen(read_end, 'rb'))
+        if 'play' in self.plan:
+            spec = self.plan['play']
+            read_end, write_end = os.pipe()
+            self.fds.append(read_end)
+            self._close_after_start.append(read_end)
+            self.host_plan['play'] = {k: spec[k] for k in ('rate', 'clock', 'stop_after')}
+            self.host_plan['play']['fd'] = read_end
+            self._thread(self._play, spec, os.fdopen(write_end, 'wb'))
+
+    def host_started(self):
+        """Close this process' copies of the host's pipe ends."""
+        for fd in self._close_after_start:
+            os.close(fd)
+        self._close_after_start = []
+
+    def finish(self, status):
+        """Wait for the threads; the command's status."""
+        self.host_started()
+        for t in self._threads:
+            t.join()
+        return 1 if self.failed and status == 0 else status
+
+    def _thread(self, target, *args):
+        t = threading.Thread(target=target, args=args, daemon=True)
+        t.start()
+        self._threads.append(t)
+
+    def _say(self, level, text):
+        print('[{}] [{}]: {}'.format(level, 'rosbag2', text), file=self.err, flush=True)
+
+    def _record(self, writer, stream):
+        channels = {}
+        dropped = 0
+        try:
+            for kind, body in frames.read_frames(stream):
+                if kind == frames.CHANNEL:
+                    c = json.loads(body)
+                    try:
+                        channels[c['id']] = writer.add_topic(c['topic'], c['type'], c['qos'])
+                    except SchemaError as e:
+                        channels[c['id']] = None
+                        self._say('WARNING', "not recording topic '{}': {}".format(
+                            c['topic'], e))
+                        continue
+                    if channels[c['id']] is not None:
+                        self._say('INFO', "recording topic '{}' ({})".format(
+                            c['topic'], c['type']))
+                elif kind == frames.MESSAGE:
+                    channel, log_time, publish_time, data = frames.decode_recorded(body)
+                    target = channels.get(channel)
+                    if target is not None:
+                        writer.write(target, log_time, publish_time, data)
+                elif kind == frames.NOTE:
+                    dropped = json.loads(body).get('dropped', dropped)
+                if writer.failed and not self.failed:
+                    self.failed = True
+                    self._say('ERROR', writer.failed)
+        finally:
+            stream.close()
+            writer.close()
+            if writer.failed and not self.failed:
+                self.failed = True
+                self._say('ERROR', writer.failed)
+            if not writer.failed:
+                self._say('INFO', "recorded {} messages into '{}'{}".format(
+                    writer.messages, writer.path,
+                    ' ({} dropped: the disk did not keep up)'.format(dropped) if dropped else ''))
+
+    def _play(self, spec, stream):
+        schemas = self.install_space.ros2msg_schemas()
+        wanted_topics = set(spec['topics']) if spec['topics'] else None
+        sent = 0
+        announced = {}
+        try:
+            loop = 0
+            base = None
+            span = 0
+            while True:
+                last = None
+                round_count = 0
+                for path in spec['files']:
+                    def on_topic(topic):
+                        return self._announce(topic, announced, schemas, wanted_topics, stream)
+                    try:
+                        for topic, log_time, _, data in read_messages(path, on_topic):
+                            if base is None:
+                                base = log_time
+                            last = log_time
+                            offset = log_time - base + loop * span
+                            stream.write(frames.encode_played(
+                                announced[topic.name][0], log_time, offset, data))
+                            sent += 1
+                            round_count += 1
+                    except BagError as e:
+                        self.failed = True
+                        self._say('ERROR', '{}; played {} messages'.format(e, sent))
+                        return
+                if not spec['loop'] or last is None:
+                    break
+                if loop == 0:
+                    # the next round starts one mean gap after the last message
+                    length = last - base
+                    span = length + (length // (round_count - 1) if round_count > 1
+                                     else 1000000000)
+                loop += 1
+        except BrokenPipeError:
+            return  # the host stopped (Ctrl-C, --duration): nothing more to play
+        finally:
+            with contextlib.suppress(BrokenPipeError, OSError):
+                stream.write(frames.encode_json(frames.END, {'messages': sent}))
+                stream.close()
+
+    def _announce(self, topic, announced, schemas, wanted_topics, stream):
+        """Send a topic's channel to the host, or say why it is skipped."""
+        if wanted_topics is not None and topic.name not in wanted_topics:
+            return False
+        if topic.name in announced:
+            # the same topic in a later file of the bag, or again on a loop
+            return announced[topic.name][1] == topic.type
+        problem = None
+        if topic.message_encoding != 'cdr':
+            problem = "its messages are encoded as '{}', not cdr".format(topic.message_encoding)
+        elif not topic.type:
+            problem = 'it has no schema'
+        else:
+            try:
+                schemas.full_text(topic.type)
+            except SchemaError:
+                problem = ("the workspace does not know its type '{}': build its interface "
+                           "package with 'colcon build --wasm'".format(topic.type))
+        if problem:
+            self._say('WARNING', "skipping topic '{}': {}".format(topic.name, problem))
+            announced[topic.name] = (None, None)
+            return False
+        channel = len(announced) + 1
+        announced[topic.name] = (channel, topic.type)
+        stream.write(frames.encode_json(frames.CHANNEL, {
+            'id': channel, 'topic': topic.name, 'type': schemas.resolve(topic.type),
+            'qos': player_qos(topic.qos)}))
+        return True
+
+
+@contextlib.contextmanager
+def bag_session(plan, install_space, err):
+    """Start a :class:`BagSession` (or None without record and play entries)."""
+    if not plan:
+        yield None
+        return
+    session = BagSession(plan, install_space, err)
+    session.start()
+    try:
+        yield session
+    finally:
+        session.host_started()
