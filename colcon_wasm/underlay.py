@@ -140,7 +140,7 @@ def _check_underlay(path, source, *, pthread):
     if marker is None:
         hint = ''
         if (base / 'install_wasm' / MARKER).is_file():
-            hint = " (did you mean '{}'?)".format(base / 'install_wasm')
+            hint = f" (did you mean '{base / 'install_wasm'}'?)"
         raise ColconWasmError(
             f"the underlay '{base}' ({source}) was not built with colcon build --wasm{hint}: "
             'it is a native install (its libraries are not WebAssembly). Build that '

@@ -27,7 +27,8 @@ from rclcpp_build import rclcpp_build  # noqa: E402, I100, I202
 from rosbridge_launch import node_script  # noqa: E402
 
 PROBE = {'pkg': 'rmw_wasm_cpp_node_tests', 'exe': 'probe'}
-CONNECTED = "colconWasm.session.bridge && colconWasm.session.bridge.state === 'connected' && colconWasm.session.bridge.relay"
+CONNECTED = ("colconWasm.session.bridge && colconWasm.session.bridge.state === 'connected' "
+             '&& colconWasm.session.bridge.relay')
 
 
 @pytest.fixture(scope='module')
@@ -61,8 +62,10 @@ def test_two_tabs_share_one_graph(served):
         dict(PROBE, start='listener', args=['listener']),
         {'until': CONNECTED},
         {'wait': 'listener', 'regex': r'HEARD from_tab_one \d+', 'count': 5, 'timeoutMs': 30000},
-        {'until': "colconWasm.session.graph.nodes.some((n) => n.remote && n.fqn === '/param_talker') "
-                  "&& colconWasm.session.graph.nodes.filter((n) => n.remote).map((n) => n.fqn + ' ' + n.process).join('\\n')",
+        {'until': 'colconWasm.session.graph.nodes.some((n) => n.remote && n.fqn === '
+                  "'/param_talker') "
+                  "&& colconWasm.session.graph.nodes.filter((n) => n.remote).map((n) => n.fqn + ' "
+                  "' + n.process).join('\\n')",
          'save': 'remote', 'timeoutMs': 10000},
     ]
     with ThreadPoolExecutor(2) as pool:

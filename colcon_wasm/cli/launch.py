@@ -58,7 +58,7 @@ class LaunchCommand(CliExtensionPoint):
             plan = make_plan(args.what, args.install_base)
             bridges = bridge_plan(args, err=sys.stderr)
         except (LaunchError, InstallSpaceError) as e:
-            print('colcon-wasm launch: {}'.format(e), file=sys.stderr)
+            print(f'colcon-wasm launch: {e}', file=sys.stderr)
             return 1
         return execute(plan, install_base=args.install_base, duration=args.duration,
                        echo=args.echo, print_plan=args.print_plan,

@@ -33,7 +33,7 @@ class RunCommand(CliExtensionPoint):
         try:
             bridges = bridge_plan(args, err=sys.stderr)
         except LaunchError as e:
-            print('colcon-wasm run: {}'.format(e), file=sys.stderr)
+            print(f'colcon-wasm run: {e}', file=sys.stderr)
             return 1
         return execute(plan, install_base=args.install_base, duration=args.duration,
                        echo=args.echo, print_plan=args.print_plan, command='colcon-wasm run',

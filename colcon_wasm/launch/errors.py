@@ -13,5 +13,5 @@ class LaunchError(Exception):
         self.line = line
         location = ''
         if path is not None:
-            location = '{}{}: '.format(path, ':{}'.format(line) if line else '')
+            location = f"{path}{(f':{line}' if line else '')}: "
         super().__init__(location + message)

@@ -25,13 +25,13 @@ from colcon_core.logging import colcon_logger
 from colcon_core.package_selection import PackageSelectionExtensionPoint
 from colcon_core.plugin_system import satisfies_version
 from colcon_core.topological_order import topological_order_decorators
+from colcon_wasm.build_plan import BuildPlan
+from colcon_wasm.build_plan import PLAN_KEY
 from colcon_wasm.error import ColconWasmError
 from colcon_wasm.error import exit_message
 from colcon_wasm.options import add_wasm_arguments
 from colcon_wasm.options import WasmSettings
 from colcon_wasm.package_discovery.bundled import is_bundled
-from colcon_wasm.plan import BuildPlan
-from colcon_wasm.plan import PLAN_KEY
 from colcon_wasm.recipe import load_recipe
 from colcon_wasm.system_deps import add_system_packages
 from colcon_wasm.system_deps import check_system_dependencies

@@ -65,7 +65,7 @@ def split_url_path(url_path):
     for raw in raw_segments:
         segment = unquote(raw, errors='strict') if '%' in raw else raw
         if segment in ('', '.', '..') or any(c in segment for c in '/\\\0'):
-            raise Refused(403, 'path traversal refused: {!r}'.format(url_path))
+            raise Refused(403, f'path traversal refused: {url_path!r}')
         segments.append(segment)
     return segments
 

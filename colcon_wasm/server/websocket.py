@@ -46,7 +46,7 @@ def handshake_response(headers):
     if 'websocket' not in (headers.get('Upgrade') or '').lower() or not key:
         return None
     return ('HTTP/1.1 101 Switching Protocols\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n'
-            'Sec-WebSocket-Accept: {}\r\n\r\n'.format(accept_key(key.strip()))).encode('ascii')
+            f'Sec-WebSocket-Accept: {accept_key(key.strip())}\r\n\r\n').encode('ascii')
 
 
 def encode_frame(opcode, payload):
