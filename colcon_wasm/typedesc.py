@@ -49,6 +49,7 @@ from pathlib import Path
 import re
 
 from colcon_core.logging import colcon_logger
+from colcon_wasm.error import ColconWasmError
 
 logger = colcon_logger.getChild(__name__)
 
@@ -81,7 +82,7 @@ _CONSTANT_NAME = re.compile(r'^[A-Z]([A-Z0-9_]?[A-Z0-9]+)*$')
 _KINDS = (('msg', '.msg'), ('srv', '.srv'), ('action', '.action'))
 
 
-class TypeDescriptionError(ValueError):
+class TypeDescriptionError(ColconWasmError, ValueError):
     """An interface definition that cannot be described; names file and line."""
 
     def __init__(self, message, *, path=None, line=None):

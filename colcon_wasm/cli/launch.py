@@ -6,10 +6,8 @@
 import sys
 
 from colcon_wasm.cli import CliExtensionPoint
-from colcon_wasm.launch import LaunchError
 from colcon_wasm.launch.command import execute
 from colcon_wasm.launch.command import make_plan
-from colcon_wasm.launch.install_space import InstallSpaceError
 from colcon_wasm.launch.rosbridge import add_rosbridge_arguments
 from colcon_wasm.launch.rosbridge import bridge_plan
 from colcon_wasm.launch.runner import DEFAULT_LOAD_TIMEOUT
@@ -54,12 +52,8 @@ class LaunchCommand(CliExtensionPoint):
                  'PKG FILE for a launch file of a package, or PKG/EXE items')
 
     def main(self, *, args):  # noqa: D102
-        try:
-            plan = make_plan(args.what, args.install_base)
-            bridges = bridge_plan(args, err=sys.stderr)
-        except (LaunchError, InstallSpaceError) as e:
-            print(f'colcon-wasm launch: {e}', file=sys.stderr)
-            return 1
+        plan = make_plan(args.what, args.install_base)
+        bridges = bridge_plan(args, err=sys.stderr)
         return execute(plan, install_base=args.install_base, duration=args.duration,
                        echo=args.echo, print_plan=args.print_plan,
                        command='colcon-wasm launch', load_timeout=args.load_timeout,

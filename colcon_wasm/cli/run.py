@@ -8,7 +8,6 @@ import sys
 
 from colcon_wasm.cli import CliExtensionPoint
 from colcon_wasm.cli.launch import add_runtime_arguments
-from colcon_wasm.launch import LaunchError
 from colcon_wasm.launch import LaunchPlan
 from colcon_wasm.launch import NodeProcess
 from colcon_wasm.launch.command import execute
@@ -30,11 +29,7 @@ class RunCommand(CliExtensionPoint):
 
     def main(self, *, args):  # noqa: D102
         plan = LaunchPlan([NodeProcess(args.package, args.executable, arguments=args.arguments)])
-        try:
-            bridges = bridge_plan(args, err=sys.stderr)
-        except LaunchError as e:
-            print(f'colcon-wasm run: {e}', file=sys.stderr)
-            return 1
+        bridges = bridge_plan(args, err=sys.stderr)
         return execute(plan, install_base=args.install_base, duration=args.duration,
                        echo=args.echo, print_plan=args.print_plan, command='colcon-wasm run',
                        stdin=True, bridges=bridges)

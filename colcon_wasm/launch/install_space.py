@@ -17,6 +17,8 @@ import json
 import os
 from pathlib import Path
 
+from colcon_wasm.error import ColconWasmError
+
 MANIFEST_SCHEMA = 1
 
 """The marker of an install base built with ``colcon build --wasm``."""
@@ -59,7 +61,7 @@ def _scan_base(base):
     return found
 
 
-class InstallSpaceError(Exception):
+class InstallSpaceError(ColconWasmError):
     """An install space, package or executable that is not there or is broken."""
 
 

@@ -19,6 +19,7 @@ from urllib.parse import parse_qs
 from urllib.parse import urlsplit
 
 from colcon_core.logging import colcon_logger
+from colcon_wasm.error import ColconWasmError
 from colcon_wasm.server.files import choose_body
 from colcon_wasm.server.files import CompressionCache
 from colcon_wasm.server.files import content_type
@@ -34,7 +35,7 @@ ISOLATION_HEADERS = {
 }
 
 
-class ServeError(Exception):
+class ServeError(ColconWasmError):
     """The server cannot start; the message says why and what to do."""
 
 

@@ -38,6 +38,7 @@ import threading
 import time
 
 from colcon_core.logging import colcon_logger
+from colcon_wasm.error import ColconWasmError
 from colcon_wasm.server.websocket import Connection
 
 logger = colcon_logger.getChild(__name__)
@@ -53,7 +54,7 @@ PRIMITIVES = {'bool', 'byte', 'char', 'int8', 'uint8', 'int16', 'uint16', 'int32
 ROSAPI_NAMES = {'float64': 'double', 'float32': 'float', 'bool': 'boolean', 'byte': 'octet'}
 
 
-class RequestError(Exception):
+class RequestError(ColconWasmError):
     """A request the relay refuses: the message goes into a status error."""
 
 
