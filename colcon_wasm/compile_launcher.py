@@ -31,7 +31,8 @@ Set `COLCON_WASM_LAUNCHER_VERIFY=1` to compile every file both ways and
 fail on any difference of the object files.
 
 This file must stay importable without colcon or any third-party module:
-it runs once per translation unit, with Python's site packages off.
+it runs once per translation unit, with Python's site packages off (it
+imports only :mod:`colcon_wasm.error`, which needs nothing else).
 """
 
 import hashlib
@@ -39,6 +40,11 @@ import json
 import os
 import shlex
 import sys
+
+if __package__ in (None, ''):
+    # run as a script with site packages off: import colcon_wasm from beside it
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from colcon_wasm.error import ColconWasmError  # noqa: E402 (after the path)
 
 """Source file suffixes compiled through the fast path."""
 SOURCE_SUFFIXES = ('.c', '.cc', '.cp', '.cpp', '.cxx', '.c++', '.C', '.CPP')
@@ -65,7 +71,7 @@ ENVIRONMENT_PREFIXES = ('EMCC_', 'EM_', 'EMMAKEN_', 'EMSDK')
 VERIFY_VARIABLE = 'COLCON_WASM_LAUNCHER_VERIFY'
 
 
-class Unsupported(Exception):
+class Unsupported(ColconWasmError):
     """The command is not a plain compile: emcc runs it."""
 
 

@@ -179,7 +179,7 @@ def fetch(package, *, version_prefix=None, apt_get='apt-get'):
         patches = _apply_series(tree, package)
         (tree / COMPLETE).write_text(version + '\n')
         (tree / 'COLCON_IGNORE').write_text('')
-        destination = folder / '{}-{}'.format(dsc.get('Source', package), upstream)
+        destination = folder / f"{dsc.get('Source', package)}-{upstream}"
         if destination.exists():
             shutil.rmtree(destination)
         tree.rename(destination)

@@ -32,6 +32,67 @@ PREFIX_PATH_ENVIRONMENT_VARIABLE = EnvironmentVariable(
     'colcon-wasm serve/run/launch read (set by sourcing install_wasm/setup.sh)')
 
 
+class WasmOption:
+    """One row of :data:`OPTIONS`: a `--wasm*` flag, its default, what it sets."""
+
+    def __init__(self, flag, default, *, setting=None, cmake=None):
+        """
+        Describe a `--wasm*` option.
+
+        :param str flag: the command line flag
+        :param default: its default value (the only place it is written)
+        :param str setting: the :class:`WasmSettings` attribute it sets (None:
+          the option is not a build setting)
+        :param str cmake: the CMake variable :func:`cmake_arguments` passes
+          the setting as (None: not passed to CMake)
+        """
+        self.flag = flag
+        self.dest = flag[2:].replace('-', '_')
+        self.default = default
+        self.setting = setting
+        self.cmake = cmake
+
+
+"""
+Every `--wasm*` option: its default and where its value goes, in one table.
+
+Read a row from the flag to CMake: `--wasm-opt-level` (default '2') sets
+:attr:`WasmSettings.opt_level`, which :func:`cmake_arguments` passes as
+`-DCOLCON_WASM_OPT_LEVEL=2`, which toolchains/wasm-ros-cache.cmake turns
+into the Release flags (`-O2 -DNDEBUG`). The toolchain files default none of
+the CMake variables: they stop with an error naming the variable when one is
+unset. The test options (`--wasm-tests*`) are added by
+:mod:`colcon_wasm.testing.options`, which reads its defaults here; their
+CMake variables are per package (:func:`cmake_arguments_for_tests`).
+"""
+OPTIONS = (
+    WasmOption('--wasm', False),
+    WasmOption('--wasm-emscripten', None),  # toolchain.find_emscripten's lookup
+    WasmOption('--wasm-recipe', ()),
+    WasmOption('--wasm-underlay', ()),
+    # -pthread on every compile and link, -sPTHREAD_POOL_SIZE on links
+    WasmOption('--wasm-no-pthread', False, setting='pthread', cmake='COLCON_WASM_PTHREAD'),
+    WasmOption('--wasm-pthread-pool-size', 4, setting='pthread_pool_size',
+               cmake='COLCON_WASM_PTHREAD_POOL_SIZE'),
+    # CMAKE_BUILD_TYPE Debug instead of Release
+    WasmOption('--wasm-debug', False, setting='debug', cmake='COLCON_WASM_DEBUG'),
+    # CMAKE_<LANG>_FLAGS_RELEASE
+    WasmOption('--wasm-opt-level', '2', setting='opt_level', cmake='COLCON_WASM_OPT_LEVEL'),
+    # CMAKE_EXE_LINKER_FLAGS_RELEASE; None: the --wasm-opt-level
+    WasmOption('--wasm-link-opt-level', None, setting='link_opt_level',
+               cmake='COLCON_WASM_LINK_OPT_LEVEL'),
+    # BUILD_TESTING per package (COLCON_WASM_TESTS)
+    WasmOption('--wasm-tests', None),
+    # COLCON_WASM_FAULT_INJECTION
+    WasmOption('--wasm-fault-injection', False),
+    # colcon test --wasm only
+    WasmOption('--wasm-test-timeout', 300),
+)
+
+"""The defaults of :data:`OPTIONS` by argument destination (`wasm_opt_level`: '2')."""
+DEFAULTS = {option.dest: option.default for option in OPTIONS}
+
+
 def add_wasm_arguments(parser):
     """
     Add the `--wasm*` options to a colcon verb's parser.
@@ -63,10 +124,11 @@ def add_wasm_arguments(parser):
         '--wasm-no-pthread', action='store_true',
         help='Build without -pthread (no worker threads)')
     parser.add_argument(
-        '--wasm-opt-level', choices=OPT_LEVELS, default='2',
-        help='Optimization level of Release builds (default: 2)')
+        '--wasm-opt-level', choices=OPT_LEVELS, default=DEFAULTS['wasm_opt_level'],
+        help=f"Optimization level of Release builds (default: {DEFAULTS['wasm_opt_level']})")
     parser.add_argument(
-        '--wasm-link-opt-level', choices=('0',) + OPT_LEVELS, default=None,
+        '--wasm-link-opt-level', choices=('0',) + OPT_LEVELS,
+        default=DEFAULTS['wasm_link_opt_level'],
         help='Optimization level of Release links only (default: the '
              '--wasm-opt-level); 1 links much faster, 2 and 3 make smaller '
              'and faster .wasm files')
@@ -74,7 +136,7 @@ def add_wasm_arguments(parser):
         '--wasm-pthread-pool-size', type=_pool_size, metavar='N',
         default=_default_pool_size(),
         help='Workers started with each executable (default: '
-             f'${PTHREAD_POOL_SIZE_ENV} or 4)')
+             f"${PTHREAD_POOL_SIZE_ENV} or {DEFAULTS['wasm_pthread_pool_size']})")
     add_wasm_test_arguments(parser)
 
 
@@ -93,35 +155,52 @@ def _pool_size(value):
 
 
 def _default_pool_size():
+    """Get the pool size of `$COLCON_WASM_PTHREAD_POOL_SIZE`, else the table's."""
+    default = DEFAULTS['wasm_pthread_pool_size']
     try:
-        return int(os.environ.get(PTHREAD_POOL_SIZE_ENV, '4'))
+        return int(os.environ.get(PTHREAD_POOL_SIZE_ENV, default))
     except ValueError:
-        return 4
+        return default
 
 
 class WasmSettings:
-    """The build settings derived from the `--wasm*` options."""
+    """The build settings derived from the `--wasm*` options (see :data:`OPTIONS`)."""
 
     def __init__(self, args):
-        """Read the settings from parsed arguments."""
-        self.pthread = not getattr(args, 'wasm_no_pthread', False)
-        self.debug = bool(getattr(args, 'wasm_debug', False))
-        self.opt_level = str(getattr(args, 'wasm_opt_level', '2') or '2')
-        link = getattr(args, 'wasm_link_opt_level', None)
+        """Read the settings from parsed arguments (the table's defaults where absent)."""
+        def value(dest):
+            found = getattr(args, dest, None)
+            return DEFAULTS[dest] if found is None else found
+
+        self.pthread = not value('wasm_no_pthread')
+        self.debug = bool(value('wasm_debug'))
+        self.opt_level = str(value('wasm_opt_level') or DEFAULTS['wasm_opt_level'])
+        link = value('wasm_link_opt_level')
         self.link_opt_level = self.opt_level if link is None else str(link)
         pool = getattr(args, 'wasm_pthread_pool_size', None)
-        self.pthread_pool_size = _default_pool_size() if pool is None \
-            else int(pool)
+        self.pthread_pool_size = _default_pool_size() if pool is None else int(pool)
         self.testing = TestSettings(args)
 
     def describe(self, cmake_args):
-        """Get the flags entry of the manifest."""
+        """Get the flags entry of the manifest: what the build used."""
         return {
             'pthread': self.pthread, 'debug': self.debug,
             'opt': self.opt_level, 'link_opt': self.link_opt_level,
             'pthread_pool_size': self.pthread_pool_size if self.pthread else 0,
             **self.testing.describe(),
             'cmake_args': list(cmake_args)}
+
+    def cmake_arguments(self):
+        """Get the `-D` arguments of the settings, as :data:`OPTIONS` maps them."""
+        args = []
+        for option in OPTIONS:
+            if option.cmake is None:
+                continue
+            value = getattr(self, option.setting)
+            if isinstance(value, bool):
+                value = 'ON' if value else 'OFF'
+            args.append(f'-D{option.cmake}={value}')
+        return args
 
 
 def compile_launcher_script():
@@ -155,18 +234,14 @@ def cmake_arguments(*, emscripten, settings, install_base, rule,
     :param underlays: install bases of the underlays, highest priority first
     :rtype: list
     """
-    on_off = {True: 'ON', False: 'OFF'}
     args = [
         # PYTHON_EXECUTABLE etc. are unused by many packages: no warning
         '--no-warn-unused-cli',
         f'-DCOLCON_WASM_EMSCRIPTEN_ROOT={emscripten.root}',
         f'-DCOLCON_WASM_EMSCRIPTEN_BIN={emscripten.bin_dir}',
         f'-DCOLCON_WASM_INSTALL_BASE={install_base}',
-        f'-DCOLCON_WASM_PTHREAD={on_off[settings.pthread]}',
-        f'-DCOLCON_WASM_PTHREAD_POOL_SIZE={settings.pthread_pool_size}',
-        f'-DCOLCON_WASM_DEBUG={on_off[settings.debug]}',
-        f'-DCOLCON_WASM_OPT_LEVEL={settings.opt_level}',
-        f'-DCOLCON_WASM_LINK_OPT_LEVEL={settings.link_opt_level}',
+        # the build settings (the CMake variables of OPTIONS)
+        *settings.cmake_arguments(),
         # before the initial cache, which reads them (tests, fault injection)
         *cmake_arguments_for_tests(settings.testing, project_name, rule),
         '-C', str(resources.file('toolchains', 'wasm-ros-cache.cmake')),

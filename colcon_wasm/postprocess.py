@@ -11,13 +11,11 @@ For every executable CMake installed as `<exe>.js`:
 2. inject the glue fragments of `templates/glue/` into the `.js` and
    `.worker.js` (see :mod:`colcon_wasm.glue`);
 3. write `share/<pkg>/colcon_wasm/manifest.json` (docs/design.md section 5);
-4. write type descriptions when :mod:`colcon_wasm.typedesc` is installed.
+4. write the type descriptions (:mod:`colcon_wasm.typedesc`).
 """
 
 import gzip
 import hashlib
-import importlib
-import importlib.util
 import json
 import os
 from pathlib import Path
@@ -25,6 +23,7 @@ import shutil
 
 from colcon_core.logging import colcon_logger
 from colcon_wasm import glue
+from colcon_wasm import typedesc
 from colcon_wasm.error import ColconWasmError
 
 logger = colcon_logger.getChild(__name__)
@@ -221,16 +220,10 @@ def write_json_if_changed(path, data):
 
 def call_type_description_generator(prefix, pkg_name):
     """
-    Write type descriptions with :mod:`colcon_wasm.typedesc`, if installed.
+    Write the package's type descriptions (:mod:`colcon_wasm.typedesc`).
 
-    The generator is another part of colcon-wasm (see docs/design.md
-    section 5); until it exists this step does nothing.
-
-    :returns: True when the generator ran
+    :returns: True (the generator ran)
     """
-    if importlib.util.find_spec('colcon_wasm.typedesc') is None:
-        return False
-    typedesc = importlib.import_module('colcon_wasm.typedesc')
     typedesc.write_type_descriptions(prefix, pkg_name)
     return True
 
@@ -261,7 +254,9 @@ def postprocess_package(*, pkg_name, pkg_version, build_base, install_prefix,
         files = install_companions(executable)
         context = {
             'package': pkg_name, 'executable': executable.name,
-            'pthread': any(role == 'worker' for role, _ in files),
+            # what the build used (the manifest's flags), not guessed from its files
+            'pthread': bool(flags.get('pthread')),
+            'pthread_pool_size': int(flags.get('pthread_pool_size') or 0),
             'debug': bool(flags.get('debug')),
             'emscripten_version': emscripten.get('version'),
         }
@@ -276,6 +271,7 @@ def postprocess_package(*, pkg_name, pkg_version, build_base, install_prefix,
             'files': [file_entry(path, prefix, role) for role, path in files],
             'uses_bus': BUS_MARKER in text,
             'pthread': context['pthread'],
+            'pthread_pool_size': context['pthread_pool_size'],
         }
         provides = provided_package(executable.installed_js, prefix, pkg_name)
         if provides:

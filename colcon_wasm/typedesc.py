@@ -56,6 +56,7 @@ from pathlib import Path
 import re
 
 from colcon_core.logging import colcon_logger
+from colcon_wasm.error import ColconWasmError
 
 logger = colcon_logger.getChild(__name__)
 
@@ -88,7 +89,7 @@ _CONSTANT_NAME = re.compile(r'^[A-Z]([A-Z0-9_]?[A-Z0-9]+)*$')
 _KINDS = (('msg', '.msg'), ('srv', '.srv'), ('action', '.action'))
 
 
-class TypeDescriptionError(ValueError):
+class TypeDescriptionError(ColconWasmError, ValueError):
     """An interface definition that cannot be described; names file and line."""
 
     def __init__(self, message, *, path=None, line=None):
@@ -97,7 +98,7 @@ class TypeDescriptionError(ValueError):
         self.line = line
         location = ''
         if path is not None:
-            location = str(path) + (':{}'.format(line) if line else '') + ': '
+            location = str(path) + (f':{line}' if line else '') + ': '
         super().__init__(location + message)
 
 
@@ -106,7 +107,7 @@ def _error(message, source, line_number):
 
 
 def _full_name(package, kind, name):
-    return '{}/{}/{}'.format(package, kind, name)
+    return f'{package}/{kind}/{name}'
 
 
 def _parse_int(text):
@@ -144,7 +145,7 @@ def parse_primitive_value(primitive, text, *, string_bound=None):
         if text.lower() in ('false', '0'):
             return False
         raise ValueError(
-            "value '{}' is not a bool: use true/1 or false/0".format(text))
+            f"value '{text}' is not a bool: use true/1 or false/0")
     if primitive in _INTEGER_RANGES:
         low, high = _INTEGER_RANGES[primitive]
         try:
@@ -153,30 +154,28 @@ def parse_primitive_value(primitive, text, *, string_bound=None):
             value = None
         if value is None or not low <= value <= high:
             raise ValueError(
-                "value '{}' is not a valid {}: use an integer from {} to {}"
-                .format(text, primitive, low, high))
+                f"value '{text}' is not a valid {primitive}: use an integer from {low} to {high}")
         return _json_number(primitive, value)
     if primitive in ('float32', 'float64'):
         try:
             return _json_number(primitive, float(text))
         except ValueError:
             raise ValueError(
-                "value '{}' is not a valid {}: use a number with '.' as the "
-                'decimal separator'.format(text, primitive)) from None
+                f"value '{text}' is not a valid {primitive}: use a number with '.' as the "
+                'decimal separator') from None
     # string and wstring: outer quotes allow leading and trailing spaces
     for quote in ('"', "'"):
         if len(text) >= 2 and text.startswith(quote) and text.endswith(quote):
             text = text[1:-1]
-            if re.search(r'(?<!\\){}'.format(quote), text):
+            if re.search(rf'(?<!\\){quote}', text):
                 raise ValueError(
-                    'string value {!r} has an inner {} that is not escaped '
-                    'with a backslash'.format(text, quote))
+                    f'string value {text!r} has an inner {quote} that is not escaped '
+                    'with a backslash')
             text = text.replace('\\' + quote, quote)
             break
     if string_bound is not None and len(text) > string_bound:
         raise ValueError(
-            'string value {!r} is longer than the bound of {} characters'
-            .format(text, string_bound))
+            f'string value {text!r} is longer than the bound of {string_bound} characters')
     return text
 
 
@@ -196,13 +195,12 @@ def _split_string_array(text):
                     break
                 index += 1
             else:
-                raise ValueError('string array element {} has no closing {}'
-                                 .format(rest, quote))
+                raise ValueError(f'string array element {rest} has no closing {quote}')
             values.append(rest[1:index].replace('\\' + quote, quote))
             rest = rest[index + 1:].lstrip()
             if rest and rest[0] != ',':
                 raise ValueError(
-                    "expected ',' after a quoted string, found {!r}".format(rest))
+                    f"expected ',' after a quoted string, found {rest!r}")
             rest = rest[1:].lstrip()
         else:
             element, _, rest = rest.partition(',')
@@ -223,15 +221,14 @@ def parse_default_value(field, text):
     primitive = field['type']
     if primitive not in PRIMITIVE_TYPES:
         raise ValueError(
-            "field of type '{}' cannot have a default value: only primitive "
-            'types and arrays of them can'.format(primitive))
+            f"field of type '{primitive}' cannot have a default value: only primitive "
+            'types and arrays of them can')
     bound = field.get('string_bound')
     if 'array_size' not in field and not field.get('sequence'):
         return parse_primitive_value(primitive, text, string_bound=bound)
     if not (text.startswith('[') and text.endswith(']')):
         raise ValueError(
-            "array default value '{}' must start with '[' and end with ']'"
-            .format(text))
+            f"array default value '{text}' must start with '[' and end with ']'")
     inner = text[1:-1]
     if primitive in ('string', 'wstring'):
         elements = _split_string_array(inner)
@@ -239,13 +236,11 @@ def parse_default_value(field, text):
         elements = [e.strip() for e in inner.split(',')] if inner.strip() else []
     size = field.get('array_size')
     if size is not None and len(elements) != size:
-        raise ValueError('array default value has {} elements, the array has {}'
-                         .format(len(elements), size))
+        raise ValueError(f'array default value has {len(elements)} elements, the array has {size}')
     limit = field.get('sequence_bound')
     if limit is not None and len(elements) > limit:
         raise ValueError(
-            'sequence default value has {} elements, more than the bound {}'
-            .format(len(elements), limit))
+            f'sequence default value has {len(elements)} elements, more than the bound {limit}')
     return [parse_primitive_value(primitive, e, string_bound=bound)
             for e in elements]
 
@@ -264,7 +259,7 @@ def parse_field_type(type_text, package):
     if base.endswith(']'):
         index = base.rfind('[')
         if index < 0:
-            raise ValueError("type '{}' ends with ']' but has no '['".format(type_text))
+            raise ValueError(f"type '{type_text}' ends with ']' but has no '['")
         size_text = base[index + 1:-1]
         base = base[:index]
         if size_text == '':
@@ -279,8 +274,8 @@ def parse_field_type(type_text, package):
                 size = 0
             if size <= 0:
                 raise ValueError(
-                    "the size of array type '{}' must be an integer > 0, "
-                    "optionally prefixed with '<=' for an upper bound".format(type_text))
+                    f"the size of array type '{type_text}' must be an integer > 0, "
+                    "optionally prefixed with '<=' for an upper bound")
             if upper:
                 field['sequence'] = True
                 field['sequence_bound'] = size
@@ -296,12 +291,11 @@ def parse_field_type(type_text, package):
             bound = 0
         if bound <= 0:
             raise ValueError(
-                "the bound of string type '{}' must be an integer > 0".format(base))
+                f"the bound of string type '{base}' must be an integer > 0")
         field['string_bound'] = bound
     elif base in ('time', 'duration'):
         raise ValueError(
-            "'{}' is a ROS 1 type: use builtin_interfaces/{}".format(
-                base, base.capitalize()))
+            f"'{base}' is a ROS 1 type: use builtin_interfaces/{base.capitalize()}")
     else:
         parts = base.split('/')
         if len(parts) == 1:
@@ -312,14 +306,13 @@ def parse_field_type(type_text, package):
             type_package, name = parts[0], parts[2]
         else:
             raise ValueError(
-                "type '{}' is not a primitive type nor 'package/Message'".format(base))
+                f"type '{base}' is not a primitive type nor 'package/Message'")
         if not _PACKAGE_NAME.match(type_package):
-            raise ValueError("'{}' in type '{}' is not a valid package name"
-                             .format(type_package, base))
+            raise ValueError(f"'{type_package}' in type '{base}' is not a valid package name")
         if not _TYPE_NAME.match(name):
             raise ValueError(
-                "'{}' in type '{}' is not a valid message name (CamelCase, "
-                'starting with an upper-case letter)'.format(name, base))
+                f"'{name}' in type '{base}' is not a valid message name (CamelCase, "
+                'starting with an upper-case letter)')
         field_type = _full_name(type_package, 'msg', name)
     return dict({'type': field_type}, **field)
 
@@ -352,8 +345,8 @@ def parse_message(package, name, text, *, source=None, first_line=1):
         rest = rest.strip()
         if not rest:
             raise _error(
-                "'{}' is not a field or constant: expected 'TYPE NAME', "
-                "'TYPE NAME DEFAULT' or 'TYPE NAME=VALUE'".format(line),
+                f"'{line}' is not a field or constant: expected 'TYPE NAME', "
+                "'TYPE NAME DEFAULT' or 'TYPE NAME=VALUE'",
                 source, line_number)
         if '=' in rest:
             constant_name, _, value_text = rest.partition('=')
@@ -361,16 +354,17 @@ def parse_message(package, name, text, *, source=None, first_line=1):
             value_text = value_text.strip()
             if type_text not in PRIMITIVE_TYPES:
                 raise _error(
-                    "constant '{}' has type '{}': constants must have a primitive "
-                    'type'.format(constant_name, type_text), source, line_number)
+                    f"constant '{constant_name}' has type '{type_text}': constants must have a "
+                    'primitive '
+                    'type', source, line_number)
             if not _CONSTANT_NAME.match(constant_name):
                 raise _error(
-                    "'{}' is not a valid constant name (UPPER_CASE)".format(constant_name),
+                    f"'{constant_name}' is not a valid constant name (UPPER_CASE)",
                     source, line_number)
             try:
                 value = parse_primitive_value(type_text, value_text)
             except ValueError as e:
-                raise _error('constant {}: {}'.format(constant_name, e),
+                raise _error(f'constant {constant_name}: {e}',
                              source, line_number) from None
             entry = {'name': constant_name, 'type': type_text, 'value': value}
             target = constants
@@ -380,26 +374,25 @@ def parse_message(package, name, text, *, source=None, first_line=1):
             default_text = default_text.strip()
             if not _FIELD_NAME.match(field_name):
                 raise _error(
-                    "'{}' is not a valid field name (lower_case, no double or "
-                    'trailing underscore)'.format(field_name), source, line_number)
+                    f"'{field_name}' is not a valid field name (lower_case, no double or "
+                    'trailing underscore)', source, line_number)
             try:
                 field = parse_field_type(type_text, package)
             except ValueError as e:
-                raise _error('field {}: {}'.format(field_name, e),
+                raise _error(f'field {field_name}: {e}',
                              source, line_number) from None
             entry = dict({'name': field_name}, **field)
             if default_text:
                 try:
                     entry['default'] = parse_default_value(field, default_text)
                 except ValueError as e:
-                    raise _error('default of field {}: {}'.format(field_name, e),
+                    raise _error(f'default of field {field_name}: {e}',
                                  source, line_number) from None
             target = fields
             entry_name = field_name
         if entry_name in names:
             raise _error(
-                "'{}' is defined twice (first on line {})".format(
-                    entry_name, names[entry_name]),
+                f"'{entry_name}' is defined twice (first on line {names[entry_name]})",
                 source, line_number)
         names[entry_name] = line_number
         target.append(entry)
@@ -414,8 +407,8 @@ def _split_sections(text, count, source, kind):
     separators = [i for i, line in enumerate(lines) if line == '---']
     if len(separators) != count - 1:
         raise _error(
-            "a .{} file needs exactly {} '---' separator line(s), found {}".format(
-                kind, count - 1, len(separators)), source, None)
+            f"a .{kind} file needs exactly {count - 1} '---' separator line(s), found "
+            f'{len(separators)}', source, None)
     bounds = [-1] + separators + [len(lines)]
     return [('\n'.join(lines[bounds[i] + 1:bounds[i + 1]]), bounds[i] + 2)
             for i in range(count)]
@@ -529,12 +522,12 @@ def describe_package(share_dir, package):
             name = path.stem
             if not _TYPE_NAME.match(name):
                 raise TypeDescriptionError(
-                    "'{}' is not a valid interface name (CamelCase)".format(name),
+                    f"'{name}' is not a valid interface name (CamelCase)",
                     path=path)
             try:
                 text = path.read_text(encoding='utf-8')
             except (OSError, UnicodeDecodeError) as e:
-                raise TypeDescriptionError('cannot read: {}'.format(e), path=path) from e
+                raise TypeDescriptionError(f'cannot read: {e}', path=path) from e
             if kind == 'msg':
                 document['messages'].update(
                     describe_message(package, name, text, source=path))
@@ -575,5 +568,5 @@ def write_type_descriptions(prefix, package):
     temporary = path.with_name(path.name + '.tmp')
     temporary.write_text(text, encoding='utf-8')
     os.replace(str(temporary), str(path))
-    logger.debug("Wrote type descriptions of '{}' to '{}'".format(package, path))
+    logger.debug(f"Wrote type descriptions of '{package}' to '{path}'")
     return path

@@ -24,7 +24,7 @@ import subprocess
 
 from colcon_wasm import __version__
 from colcon_wasm.error import ColconWasmError
-from colcon_wasm.error import exit_message
+from colcon_wasm.error import exit_on_error
 
 """The marker file of a `--wasm` install base."""
 MARKER = '.colcon_wasm_install.json'
@@ -140,7 +140,7 @@ def _check_underlay(path, source, *, pthread):
     if marker is None:
         hint = ''
         if (base / 'install_wasm' / MARKER).is_file():
-            hint = " (did you mean '{}'?)".format(base / 'install_wasm')
+            hint = f" (did you mean '{base / 'install_wasm'}'?)"
         raise ColconWasmError(
             f"the underlay '{base}' ({source}) was not built with colcon build --wasm{hint}: "
             'it is a native install (its libraries are not WebAssembly). Build that '
@@ -199,15 +199,13 @@ def get_underlays(args):
         install_base = getattr(args, 'install_base', None) or 'install_wasm'
         option_paths = getattr(args, 'wasm_underlay', None) or []
         pthread = not getattr(args, 'wasm_no_pthread', False)
-        try:
+        with exit_on_error():
             if getattr(args, 'verb_name', None) == 'test':
                 option_paths, pthread = _as_built(install_base, option_paths, pthread)
             underlays = find_underlays(
                 option_paths=option_paths,
                 environ=os.environ, install_base=install_base,
                 pthread=pthread)
-        except ColconWasmError as e:
-            raise SystemExit(exit_message(e)) from e
         setattr(args, _ARGS_ATTRIBUTE, underlays)
     return underlays
 

@@ -80,9 +80,9 @@ def _ordered(messages):
 def _member_type(field):
     base = _struct(field['type']) if _is_nested(field['type']) else CPP_TYPES[field['type']]
     if 'array_size' in field:
-        return 'std::array<{}, {}>'.format(base, field['array_size'])
+        return f"std::array<{base}, {field['array_size']}>"
     if field.get('sequence'):
-        return 'std::vector<{}>'.format(base)
+        return f'std::vector<{base}>'
     return base
 
 
@@ -96,46 +96,46 @@ def _serialize_member(field):
     out = []
     if 'array_size' in field:
         if not (nested or wide):
-            out.append('cdr << {};'.format(m))
+            out.append(f'cdr << {m};')
         else:
-            out.append('for (size_t i = 0; i < {}; i++) {{'.format(field['array_size']))
+            out.append(f"for (size_t i = 0; i < {field['array_size']}; i++) {{")
             if nested:
-                out.append('  ser({}[i], cdr);'.format(m))
+                out.append(f'  ser({m}[i], cdr);')
             else:
-                out.append('  std::wstring wstr; u16_to_w({}[i], wstr); cdr << wstr;'.format(m))
+                out.append(f'  std::wstring wstr; u16_to_w({m}[i], wstr); cdr << wstr;')
             out.append('}')
     elif field.get('sequence'):
         bounded = 'sequence_bound' in field
         if not (nested or wide) and not bounded:
-            out.append('cdr << {};'.format(m))
+            out.append(f'cdr << {m};')
         else:
-            out.append('size_t size = {}.size();'.format(m))
+            out.append(f'size_t size = {m}.size();')
             if bounded:
-                out.append('if (size > {}) throw std::runtime_error("bound");'.format(
-                    field['sequence_bound']))
+                out.append(f"if (size > {field['sequence_bound']}) "
+                           'throw std::runtime_error("bound");')
             out.append('cdr << static_cast<uint32_t>(size);')
             if basic and t != 'bool':
-                out.append('if (size > 0) cdr.serializeArray(&({}[0]), size);'.format(m))
+                out.append(f'if (size > 0) cdr.serializeArray(&({m}[0]), size);')
             else:
                 out.append('for (size_t i = 0; i < size; i++) {')
                 if t == 'bool':
-                    out.append('  cdr << ({}[i] ? true : false);'.format(m))
+                    out.append(f'  cdr << ({m}[i] ? true : false);')
                 elif wide:
                     out.append(
-                        '  std::wstring wstr; u16_to_w({}[i], wstr); cdr << wstr;'.format(m))
+                        f'  std::wstring wstr; u16_to_w({m}[i], wstr); cdr << wstr;')
                 elif nested:
-                    out.append('  ser({}[i], cdr);'.format(m))
+                    out.append(f'  ser({m}[i], cdr);')
                 else:
-                    out.append('  cdr << {}[i];'.format(m))
+                    out.append(f'  cdr << {m}[i];')
                 out.append('}')
     elif t == 'bool':
-        out.append('cdr << ({} ? true : false);'.format(m))
+        out.append(f'cdr << ({m} ? true : false);')
     elif wide:
-        out.append('std::wstring wstr; u16_to_w({}, wstr); cdr << wstr;'.format(m))
+        out.append(f'std::wstring wstr; u16_to_w({m}, wstr); cdr << wstr;')
     elif nested:
-        out.append('ser({}, cdr);'.format(m))
+        out.append(f'ser({m}, cdr);')
     else:
-        out.append('cdr << {};'.format(m))
+        out.append(f'cdr << {m};')
     return ['  {'] + ['    ' + line for line in out] + ['  }']
 
 
@@ -147,23 +147,23 @@ def _literal(type_name, value):
         if value in ('NaN', 'Infinity', '-Infinity'):
             limit = 'quiet_NaN()' if value == 'NaN' else 'infinity()'
             sign = '-' if value == '-Infinity' else ''
-            return '{}std::numeric_limits<{}>::{}'.format(sign, ctype, limit)
-        return 'static_cast<{}>({})'.format(ctype, float(value).hex())
+            return f'{sign}std::numeric_limits<{ctype}>::{limit}'
+        return f'static_cast<{ctype}>({float(value).hex()})'
     if type_name == 'string':
         data = value.encode('utf-8')
         if not data:
             return 'std::string()'
-        return 'std::string({{{}}})'.format(', '.join('char({})'.format(b) for b in data))
+        return f"std::string({{{', '.join(('char({})'.format(b) for b in data))}}})"
     if type_name == 'wstring':
         units = value.encode('utf-16-le')
         codes = [units[i] | units[i + 1] << 8 for i in range(0, len(units), 2)]
-        return 'std::u16string({{{}}})'.format(
-            ', '.join('char16_t({})'.format(c) for c in codes)) if codes else 'std::u16string()'
+        chars = ', '.join(f'char16_t({c})' for c in codes)
+        return f'std::u16string({{{chars}}})' if codes else 'std::u16string()'
     number = int(value)
     if type_name == 'int64' and number == -2 ** 63:
         return 'std::numeric_limits<int64_t>::min()'
     suffix = 'ULL' if type_name.startswith('u') or type_name in ('byte', 'char') else 'LL'
-    return 'static_cast<{}>({}{})'.format(CPP_TYPES[type_name], number, suffix)
+    return f'static_cast<{CPP_TYPES[type_name]}>({number}{suffix})'
 
 
 def _assign(messages, type_name, value, target, where):
@@ -172,33 +172,33 @@ def _assign(messages, type_name, value, target, where):
     missing = [n for n in names if n not in value]
     extra = [k for k in value if k not in names]
     if missing or extra:
-        raise ValueError('{}: a vector of {} must list every field (missing {}, unknown {})'
-                         .format(where, type_name, missing, extra))
+        raise ValueError(f'{where}: a vector of {type_name} must list every field (missing '
+                         f'{missing}, unknown {extra})'
+                         )
     out = []
     for field in description['fields']:
         v = value[field['name']]
-        lhs = '{}.{}'.format(target, field['name'])
+        lhs = f"{target}.{field['name']}"
         items = None
         if 'array_size' in field:
             if len(v) != field['array_size']:
-                raise ValueError('{}: {} needs {} elements'.format(
-                    where, lhs, field['array_size']))
+                raise ValueError(f"{where}: {lhs} needs {field['array_size']} elements")
             items = v
         elif field.get('sequence'):
-            out.append('{}.resize({});'.format(lhs, len(v)))
+            out.append(f'{lhs}.resize({len(v)});')
             items = v
         if items is None:
             if _is_nested(field['type']):
                 out += _assign(messages, field['type'], v, lhs, where)
             else:
-                out.append('{} = {};'.format(lhs, _literal(field['type'], v)))
+                out.append(f"{lhs} = {_literal(field['type'], v)};")
             continue
         for i, item in enumerate(items):
-            element = '{}[{}]'.format(lhs, i)
+            element = f'{lhs}[{i}]'
             if _is_nested(field['type']):
                 out += _assign(messages, field['type'], item, element, where)
             else:
-                out.append('{} = {};'.format(element, _literal(field['type'], item)))
+                out.append(f"{element} = {_literal(field['type'], item)};")
     return out
 
 
@@ -225,11 +225,11 @@ def generate_program(types, cases):
         '}',
     ]
     for name in _ordered(messages):
-        lines.append('struct {} {{'.format(_struct(name)))
+        lines.append(f'struct {_struct(name)} {{')
         for field in messages[name]['fields']:
-            lines.append('  {} {}{{}};'.format(_member_type(field), field['name']))
+            lines.append(f"  {_member_type(field)} {field['name']}{{}};")
         lines.append('};')
-        lines.append('static void ser(const {} & m, Cdr & cdr) {{'.format(_struct(name)))
+        lines.append(f'static void ser(const {_struct(name)} & m, Cdr & cdr) {{')
         for field in messages[name]['fields']:
             lines += _serialize_member(field)
         lines.append('}')
@@ -247,9 +247,9 @@ def generate_program(types, cases):
     lines.append('int main() {')
     for name, type_name, value in cases:
         lines.append('  {')
-        lines.append('    {} m{{}};'.format(_struct(type_name)))
+        lines.append(f'    {_struct(type_name)} m{{}};')
         lines += ['    ' + s for s in _assign(messages, type_name, value, 'm', name)]
-        lines.append('    emit("{}", m);'.format(name))
+        lines.append(f'    emit("{name}", m);')
         lines.append('  }')
     lines.append('  return 0;')
     lines.append('}')
@@ -304,13 +304,13 @@ def main(argv=None):
         for case in document['vectors']:
             if case.get('hex') != hexes[case['name']]:
                 changed += 1
-                print('{}: {}: {}'.format(file_name, case['name'], hexes[case['name']]))
+                print(f"{file_name}: {case['name']}: {hexes[case['name']]}")
                 case['hex'] = hexes[case['name']]
         if args.write:
             (DATA / file_name).write_text(
                 json.dumps(document, indent=1, ensure_ascii=False) + '\n', encoding='utf-8')
-    print('{} vector(s) differ from Fast CDR{}'.format(
-        changed, ', written' if args.write and changed else ''))
+    written = ', written' if args.write and changed else ''
+    print(f'{changed} vector(s) differ from Fast CDR{written}')
     return 0
 
 

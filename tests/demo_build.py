@@ -20,8 +20,8 @@ def venv_tool(name):
     """Return a console script of the interpreter running the tests (its venv)."""
     path = Path(sys.executable).parent / name
     if not path.exists():
-        raise RuntimeError('{} is not installed next to {}: pip install -e .[test]'.format(
-            name, sys.executable))
+        raise RuntimeError(f'{name} is not installed next to {sys.executable}: pip install -e '
+                           '.[test]')
     return path
 
 
@@ -42,7 +42,7 @@ def demo_install():
         result = subprocess.run(command, cwd=str(workspace), capture_output=True, text=True,
                                 env=dict(os.environ), timeout=1800)
         if result.returncode != 0:
-            raise RuntimeError('colcon build --wasm of the demo failed:\n{}\n{}'.format(
-                result.stdout[-8000:], result.stderr[-4000:]))
+            raise RuntimeError('colcon build --wasm of the demo '
+                               f'failed:\n{result.stdout[-8000:]}\n{result.stderr[-4000:]}')
         _built['install'] = workspace / 'install_wasm'
         return _built['install']

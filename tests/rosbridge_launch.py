@@ -13,8 +13,8 @@ Every wait is bounded; the launch is stopped with SIGINT (as Ctrl-C) and
 killed if it does not stop.
 """
 
-from pathlib import Path
 import os
+from pathlib import Path
 import re
 import signal
 import subprocess
@@ -81,8 +81,8 @@ class BackgroundLaunch:
             if self.process.poll() is not None and not self._reader.is_alive():
                 break
             time.sleep(0.05)
-        raise AssertionError('no line matched {!r} within {} s; output:\n{}'.format(
-            regex.pattern, timeout, self.output()[-6000:]))
+        raise AssertionError(f'no line matched {regex.pattern!r} within {timeout} s; '
+                             f'output:\n{self.output()[-6000:]}')
 
     def count(self, text):
         """How many lines contain ``text``."""
@@ -121,10 +121,9 @@ def node_script(script, *args, timeout=90):
     result = subprocess.run(['node', str(JS / script), *map(str, args)], capture_output=True,
                             text=True, timeout=timeout, cwd=str(JS))
     lines = [line for line in result.stdout.splitlines() if line.startswith('{')]
-    assert lines, 'node {} {} printed no result (exit {}):\n{}\n{}'.format(
-        script, ' '.join(map(str, args)), result.returncode, result.stdout[-3000:],
-        result.stderr[-3000:])
+    command = f"node {script} {' '.join(map(str, args))}"
+    assert lines, (f'{command} printed no result (exit {result.returncode}):\n'
+                   f'{result.stdout[-3000:]}\n{result.stderr[-3000:]}')
     data = json.loads(lines[-1])
-    assert data.get('ok'), 'node {} {} failed: {}\n{}'.format(
-        script, ' '.join(map(str, args)), data.get('error'), result.stderr[-3000:])
+    assert data.get('ok'), f"{command} failed: {data.get('error')}\n{result.stderr[-3000:]}"
     return data

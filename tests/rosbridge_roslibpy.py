@@ -30,7 +30,7 @@ def main(port):
     out['sum'] = add.call(roslibpy.ServiceRequest({'a': 2 ** 62, 'b': 7}), timeout=10)['sum']
     publisher = roslibpy.Topic(ros, '/chatter', 'std_msgs/msg/String')
     for i in range(10):
-        publisher.publish(roslibpy.Message({'data': 'from roslibpy {}'.format(i)}))
+        publisher.publish(roslibpy.Message({'data': f'from roslibpy {i}'}))
         time.sleep(0.05)
     deadline = time.monotonic() + 10
     while time.monotonic() < deadline and not any(h.startswith('hello') for h in heard):

@@ -1,7 +1,7 @@
 # Copyright 2026 colcon-wasm contributors
 # Licensed under the Apache License, Version 2.0
 
-"""The CI templates in ci/ run the project's real commands."""
+"""The CI templates in ci_templates/ run the project's real commands."""
 
 import glob
 import json
@@ -17,9 +17,9 @@ from colcon_helpers import REPO
 import pytest
 import yaml
 
-ACTION = REPO / 'ci' / 'actions' / 'colcon-wasm-build' / 'action.yml'
-WORKFLOW = REPO / 'ci' / 'workflows' / 'colcon-wasm.yml'
-LINT = REPO / 'ci' / 'lint'
+ACTION = REPO / 'ci_templates' / 'actions' / 'colcon-wasm-build' / 'action.yml'
+WORKFLOW = REPO / 'ci_templates' / 'workflows' / 'colcon-wasm.yml'
+LINT = REPO / 'ci_templates' / 'lint'
 
 
 def _load(path):
@@ -51,7 +51,7 @@ def test_workflow_builds_an_underlay_then_executables_on_it():
     builds = {}
     for name, job in jobs.items():
         build = next(s for s in job['steps'] if s.get('uses', '').endswith(
-            'ci/actions/colcon-wasm-build'))
+            'ci_templates/actions/colcon-wasm-build'))
         assert (REPO / build['uses']).resolve() == ACTION.parent
         assert set(build['with']) <= set(action['inputs']), name
         _check_repos(REPO / build['with']['repos-file'])

@@ -1,10 +1,12 @@
 # Copyright 2026 colcon-wasm contributors
 # Licensed under the Apache License, Version 2.0
 
-"""Finding Emscripten: lookup order, version check, one-line errors."""
+"""Finding Emscripten (lookup order, version check, one-line errors); the toolchain files."""
 
 from pathlib import Path
+import subprocess
 
+from colcon_wasm import resources
 from colcon_wasm import toolchain
 from colcon_wasm.error import ColconWasmError
 from colcon_wasm.toolchain import find_emscripten
@@ -97,3 +99,45 @@ def test_version_parsing():
     assert toolchain.parse_version('emcc (Emscripten) 3.1.6 ()') == (3, 1, 6)
     assert toolchain.parse_version('"3.1.45"') == (3, 1, 45)
     assert toolchain.parse_version('nothing') is None
+
+
+def _configure(tmp_path, **variables):
+    """Configure an empty C project with colcon-wasm's toolchain files, as CMake would."""
+    source = tmp_path / 'src'
+    source.mkdir(exist_ok=True)
+    (source / 'CMakeLists.txt').write_text('cmake_minimum_required(VERSION 3.16)\nproject(p C)\n')
+    emscripten = find_emscripten(None)
+    defaults = {
+        'COLCON_WASM_EMSCRIPTEN_ROOT': str(emscripten.root),
+        'COLCON_WASM_EMSCRIPTEN_BIN': str(emscripten.bin_dir),
+        'COLCON_WASM_PTHREAD': 'ON', 'COLCON_WASM_PTHREAD_POOL_SIZE': '4',
+        'COLCON_WASM_DEBUG': 'OFF', 'COLCON_WASM_OPT_LEVEL': '2',
+        'COLCON_WASM_LINK_OPT_LEVEL': '2'}
+    defaults.update(variables)
+    return subprocess.run(
+        ['cmake', '-S', str(source), '-B', str(tmp_path / 'build')]
+        + [f'-D{k}={v}' for k, v in defaults.items() if v is not None]
+        + ['-C', str(resources.file('toolchains', 'wasm-ros-cache.cmake')),
+           '-DCMAKE_TOOLCHAIN_FILE=' + str(resources.file('toolchains', 'wasm-ros.cmake'))],
+        capture_output=True, text=True, timeout=300)
+
+
+@pytest.mark.parametrize('variable', [
+    'COLCON_WASM_OPT_LEVEL', 'COLCON_WASM_LINK_OPT_LEVEL', 'COLCON_WASM_DEBUG',
+    'COLCON_WASM_PTHREAD', 'COLCON_WASM_PTHREAD_POOL_SIZE'])
+def test_toolchain_files_stop_when_a_setting_is_unset(tmp_path, variable):
+    # no defaults in CMake: colcon_wasm/options.py holds them, and says so
+    completed = _configure(tmp_path, **{variable: None})
+    assert completed.returncode != 0
+    message = ' '.join((completed.stdout + completed.stderr).split())
+    assert f'colcon-wasm: {variable} is not set; colcon-wasm sets it' in message, message
+    assert 'colcon_wasm/options.py' in message
+
+
+def test_toolchain_files_take_the_settings_given(tmp_path):
+    completed = _configure(tmp_path, COLCON_WASM_OPT_LEVEL='s', COLCON_WASM_LINK_OPT_LEVEL='1')
+    assert completed.returncode == 0, completed.stdout + completed.stderr
+    cache = (tmp_path / 'build' / 'CMakeCache.txt').read_text()
+    assert 'CMAKE_C_FLAGS_RELEASE:STRING=-Os -DNDEBUG' in cache
+    assert 'CMAKE_EXE_LINKER_FLAGS_RELEASE:STRING=-O1' in cache
+    assert 'CMAKE_EXE_LINKER_FLAGS_DEBUG:STRING=-g -O0 -sASSERTIONS=2' in cache

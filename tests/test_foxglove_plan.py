@@ -64,8 +64,8 @@ def test_schema_file_has_full_texts_and_names_what_cannot_be_assembled():
     with schema_file(description, _Space(messages)) as path:
         data = json.loads(open(path, encoding='utf-8').read())
         assert description['foxglove']['schemas'] == path
-    assert data['messages']['a/msg/Outer'] == 'b/Inner inner\n\n{}\nMSG: b/Inner\nint32 x\n'.format(
-        DELIMITER)
+    assert data['messages']['a/msg/Outer'] == \
+        f'b/Inner inner\n\n{DELIMITER}\nMSG: b/Inner\nint32 x\n'
     assert "'d/msg/Gone'" in data['errors']['c/msg/Broken']
     assert 'c/msg/Broken' not in data['messages']
     assert not os.path.exists(path)

@@ -19,7 +19,7 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from rclcpp_build import rclcpp_build  # noqa: E402, I100
+from rclcpp_build import rclcpp_build  # noqa: E402, I100, I202
 from rosbridge_launch import BackgroundLaunch  # noqa: E402
 from rosbridge_launch import node_script  # noqa: E402
 
@@ -28,7 +28,7 @@ URL = re.compile(r'foxglove server listening on (ws://\S+)')
 
 @pytest.fixture(scope='module')
 def server(tmp_path_factory):
-    """The probe's param_talker (an rclcpp node) with a Foxglove server."""
+    """Run the probe's param_talker (an rclcpp node) with a Foxglove server."""
     install = rclcpp_build().install
     path = tmp_path_factory.mktemp('foxglove_rclcpp') / 'params.launch.yaml'
     path.write_text(textwrap.dedent("""
@@ -42,7 +42,7 @@ def server(tmp_path_factory):
 
 
 def test_foxglove_gets_sets_and_watches_an_rclcpp_parameter(server):
-    """getParameters (one, all), setParameters with an id, and the update it causes."""
+    """Check getParameters (one, all), setParameters with an id, and its update."""
     r = node_script('foxglove_client.mjs', 'params', server.url, '/talker', 'greeting',
                     '"hi from foxglove"')
     assert {'parameters', 'parametersSubscribe'} <= set(r['info']['capabilities'])

@@ -73,8 +73,8 @@ def test_foxglove_client_decodes_publishes_calls(server):
     talked = [m for m in r['heard'] if m['data'].startswith('Hello World: ')]
     assert len(talked) >= 3
     for m in talked:
-        assert m['data'] == 'Hello World: {}'.format(m['count'])
-        server.wait_for("Publishing: '{}'".format(m['data']), timeout=5)
+        assert m['data'] == f"Hello World: {m['count']}"
+        server.wait_for(f"Publishing: '{m['data']}'", timeout=5)
     counts = [m['count'] for m in talked]
     assert counts == list(range(counts[0], counts[0] + len(counts)))
     stamps = r['timestamps']
@@ -83,8 +83,8 @@ def test_foxglove_client_decodes_publishes_calls(server):
     mine = [m for m in r['heard'] if m['data'].startswith('from foxglove')]
     assert {'from foxglove cdr 4', 'from foxglove json 4'} <= {m['data'] for m in mine}
     for i in range(5):
-        server.wait_for('I heard: [from foxglove cdr {}]'.format(i), timeout=10)
-        server.wait_for('I heard: [from foxglove json {}]'.format(i), timeout=10)
+        server.wait_for(f'I heard: [from foxglove cdr {i}]', timeout=10)
+        server.wait_for(f'I heard: [from foxglove json {i}]', timeout=10)
     assert r['sumCdr'] == {'sum': 42} and r['sumJson'] == {'sum': 11}
     server.wait_for('Incoming request: a: 40 b: 2', timeout=5)
     assert r['missing']['callId'] == 9 and 'no service 9999' in r['missing']['message']
@@ -118,12 +118,12 @@ def test_foxglove_port_in_use_stops_before_the_nodes(install, tmp_path):
         port = taken.getsockname()[1]
         result = subprocess.run(
             [str(demo_build.venv_tool('colcon-wasm')), 'run', '--install-base', str(install),
-             '--foxglove', '127.0.0.1:{}'.format(port), '--duration', '5', 'demo_nodes',
+             '--foxglove', f'127.0.0.1:{port}', '--duration', '5', 'demo_nodes',
              'talker'], capture_output=True, text=True, timeout=60)
     finally:
         taken.close()
     assert result.returncode == 1
-    assert 'port {} on 127.0.0.1 is already in use'.format(port) in result.stderr
+    assert f'port {port} on 127.0.0.1 is already in use' in result.stderr
     assert '--foxglove HOST:PORT' in result.stderr
     assert 'process started' not in result.stdout
 

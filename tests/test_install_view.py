@@ -65,7 +65,7 @@ def _fnv1a64(data):
     value = 14695981039346656037
     for byte in data:
         value = ((value ^ byte) * 1099511628211) & 0xFFFFFFFFFFFFFFFF
-    return '{:016x}'.format(value)
+    return f'{value:016x}'
 
 
 def expected_output(prefix, *, ament_prefix_path, resources):
@@ -73,51 +73,51 @@ def expected_output(prefix, *, ament_prefix_path, resources):
     prefix = Path(prefix)
 
     def listing(relative):
-        names = sorted('{}:{}'.format(p.name, 'd' if p.is_dir() else 'f')
+        names = sorted(f"{p.name}:{'d' if p.is_dir() else 'f'}"
                        for p in (prefix / relative).iterdir())
-        return 'LIST {} {} errno=OK'.format(relative, ','.join(names))
+        return f"LIST {relative} {','.join(names)} errno=OK"
 
     def stat(relative):
         info = (prefix / relative).stat()
-        return 'STAT {} size={} mode={:o} mtime={} type={}'.format(
-            relative, info.st_size, info.st_mode & 0o7777, int(info.st_mtime),
-            'd' if (prefix / relative).is_dir() else 'f')
+        kind = 'd' if (prefix / relative).is_dir() else 'f'
+        return (f'STAT {relative} size={info.st_size} mode={info.st_mode & 0o7777:o} '
+                f'mtime={int(info.st_mtime)} type={kind}')
 
     def lines(relative):
         text = (prefix / relative).read_text(encoding='utf-8')
-        return ['LINE {} {}'.format(relative, line) for line in text.split('\n')[:-1]]
+        return [f'LINE {relative} {line}' for line in text.split('\n')[:-1]]
 
     blob = (prefix / DATA / 'blob.bin').read_bytes()
     first_yaml_line = (prefix / DATA / 'sub' / 'nested.yaml').read_text().split('\n')[0]
     return [
-        'AMENT_PREFIX_PATH {}'.format(ament_prefix_path),
-        'RESOURCES packages {}'.format(','.join(resources)),
-        'PREFIX {}'.format(prefix),
+        f'AMENT_PREFIX_PATH {ament_prefix_path}',
+        f"RESOURCES packages {','.join(resources)}",
+        f'PREFIX {prefix}',
         listing(DATA),
         listing('share/fs_probe'),
         stat(DATA + '/hello.txt'),
         stat(DATA + '/blob.bin'),
         stat(DATA),
         *lines(DATA + '/hello.txt'),
-        'BINARY {}/blob.bin size={} fnv1a64={}'.format(DATA, len(blob), _fnv1a64(blob)),
-        'BINARY_AT {}/blob.bin offset=3000 {}'.format(DATA, blob[3000:3016].hex()),
-        'IFSTREAM {}/sub/nested.yaml {} good=1'.format(DATA, first_yaml_line),
+        f'BINARY {DATA}/blob.bin size={len(blob)} fnv1a64={_fnv1a64(blob)}',
+        f'BINARY_AT {DATA}/blob.bin offset=3000 {blob[3000:3016].hex()}',
+        f'IFSTREAM {DATA}/sub/nested.yaml {first_yaml_line} good=1',
         'MISSING fopen errno=ENOENT',
         'MISSING stat errno=ENOENT',
         'MISSING opendir errno=ENOENT',
-        *['WRITE {} errno=EROFS'.format(what) for what in (
+        *[f'WRITE {what} errno=EROFS' for what in (
             'fopen_w_existing', 'fopen_a_existing', 'fopen_w_new', 'open_rdwr', 'mkdir',
             'unlink', 'rename', 'chmod', 'truncate')],
         stat(DATA + '/hello.txt'),
         *lines(DATA + '/hello.txt'),
-        'THREAD {}/blob.bin bytes={} errno=OK'.format(DATA, len(blob)),
+        f'THREAD {DATA}/blob.bin bytes={len(blob)} errno=OK',
         'DONE',
     ]
 
 
 def _of(output, label):
     """Return the lines a process printed, from launch-style output (``[label] ...``)."""
-    tag = '[{}] '.format(label)
+    tag = f'[{label}] '
     return [line[len(tag):] for line in output.splitlines() if line.startswith(tag)]
 
 
@@ -140,11 +140,11 @@ def test_launch_keeps_an_ament_prefix_path_the_user_set(install, tmp_path):
     launch = tmp_path / 'probe.launch.xml'
     launch.write_text(
         '<launch>\n'
-        '  <node pkg="fs_probe" exec="fs_probe" args="{}">\n'
+        f'  <node pkg="fs_probe" exec="fs_probe" args="{prefix}">\n'
         '    <env name="AMENT_PREFIX_PATH" value="/custom/prefix"/>\n'
         '  </node>\n'
         '  <node pkg="fs_probe" exec="fs_probe"/>\n'
-        '</launch>\n'.format(prefix))
+        '</launch>\n')
     done = _colcon_wasm('launch', '--install-base', install, launch)
     assert done.returncode == 0, done.stdout + done.stderr
     # the user's value is kept; the view is there all the same (the prefix is in argv)
@@ -285,7 +285,7 @@ def test_page_views_are_lazy_cached_and_layered_in_chromium(install, overlay, co
         resources=['fs_probe', 'other_pkg'])
     # each file fetched once (hello.txt is read three times, from two streams)
     assert sorted(r for r in requests if r[0] == 'read') == [
-        ('read', '0/fs_probe/{}/{}'.format(DATA, name))
+        ('read', f'0/fs_probe/{DATA}/{name}')
         for name in ('blob.bin', 'hello.txt', 'sub/nested.yaml')], requests
     # directories come in walks along the paths looked up, not one request each (those
     # would be 23 here): one into each base's package index (base 0's brings other_pkg's

@@ -47,7 +47,7 @@ def _package(base, name, *, merged=False, executable=None):
         manifest = prefix / 'share' / name / 'colcon_wasm' / 'manifest.json'
         manifest.parent.mkdir(parents=True, exist_ok=True)
         manifest.write_text(json.dumps({'schema': 1, 'package': name, 'executables': [
-            {'name': executable, 'js': 'lib/{}/{}.js'.format(name, executable), 'files': [],
+            {'name': executable, 'js': f'lib/{name}/{executable}.js', 'files': [],
              'uses_bus': True, 'pthread': False}]}))
     return prefix
 
@@ -89,7 +89,7 @@ def test_launch_plan_gives_views_and_prefixes_overlay_first(tmp_path):
     assert description['processes'][0]['env'] == {
         'AMENT_PREFIX_PATH': str(install / 'demo_nodes')}
     assert description['processes'][1]['env'] == {'AMENT_PREFIX_PATH': '/x'}
-    both = '{}:{}'.format(install / 'demo_nodes', underlay / 'rclcpp')
+    both = f"{install / 'demo_nodes'}:{underlay / 'rclcpp'}"
     description = host_plan(plan, InstallSpace(install, underlays=[]), bases=[install, underlay])
     assert description['mounts'] == [{'path': str(install)}, {'path': str(underlay)}]
     assert description['processes'][0]['env']['AMENT_PREFIX_PATH'] == both
@@ -223,7 +223,7 @@ def test_files_are_served_exactly(tree, server):
 
 
 def _walk(server, path, skip):
-    status, headers, body = _get(server, '{}?walk={}'.format(path, skip))
+    status, headers, body = _get(server, f'{path}?walk={skip}')
     assert status == 200, body
     assert headers['Cross-Origin-Embedder-Policy'] == 'require-corp'
     return json.loads(body)['listings']
@@ -249,11 +249,11 @@ def test_a_walk_lists_the_directories_along_a_path(tree, server):
 def test_a_walk_into_a_resource_index_brings_every_package_of_the_base(tree, server):
     _, base, _, _ = tree
     index = 'share/ament_index/resource_index'
-    listings = _walk(server, '/fs/0/demo_nodes/{}/packages/demo_nodes'.format(index), 0)
+    listings = _walk(server, f'/fs/0/demo_nodes/{index}/packages/demo_nodes', 0)
     for package in ('demo_nodes', 'other_pkg'):
-        assert '{}/{}/packages'.format(package, index) in listings, sorted(listings)
+        assert f'{package}/{index}/packages' in listings, sorted(listings)
         assert package in listings  # and the directories on the way to it
-    assert [e['name'] for e in listings['other_pkg/{}/packages'.format(index)]['entries']] == [
+    assert [e['name'] for e in listings[f'other_pkg/{index}/packages']['entries']] == [
         'other_pkg']
     # elsewhere a walk stays on its path
     assert 'other_pkg' not in _walk(server, DATA, 0)

@@ -26,7 +26,7 @@ def install(tmp_path):
     executables = []
     for name in ('talker', 'listener'):
         (lib / (name + '.js')).write_text('// glue')
-        executables.append({'name': name, 'js': 'lib/demo_nodes/{}.js'.format(name),
+        executables.append({'name': name, 'js': f'lib/demo_nodes/{name}.js',
                             'files': [], 'uses_bus': True, 'pthread': True})
     share = prefix / 'share' / 'demo_nodes'
     (share / 'colcon_wasm').mkdir(parents=True)
@@ -85,8 +85,8 @@ def test_print_plan(install):
     assert execute(plan, install_base=str(install), print_plan=True, command='t', out=out) == 0
     lib = install / 'demo_nodes' / 'lib' / 'demo_nodes'
     assert out.getvalue().splitlines() == [
-        '[talker-1] {} --ros-args -r chatter:=chatter'.format(lib / 'talker.js'),
-        '[listener-2] {} --ros-args -r chatter:=chatter'.format(lib / 'listener.js')]
+        f"[talker-1] {lib / 'talker.js'} --ros-args -r chatter:=chatter",
+        f"[listener-2] {lib / 'listener.js'} --ros-args -r chatter:=chatter"]
 
 
 def test_unknown_executable_names_the_launch_file_line(install, tmp_path):
@@ -98,8 +98,8 @@ def test_unknown_executable_names_the_launch_file_line(install, tmp_path):
     assert execute(plan, install_base=str(install), print_plan=True, command='colcon-wasm launch',
                    out=io.StringIO(), err=err) == 1
     assert err.getvalue() == (
-        "colcon-wasm launch: {}:3: package 'demo_nodes' has no executable 'talkr' "
-        '(it has: talker, listener)\n'.format(launch))
+        f"colcon-wasm launch: {launch}:3: package 'demo_nodes' has no executable 'talkr' "
+        '(it has: talker, listener)\n')
 
 
 def test_missing_install_space(tmp_path):
@@ -107,7 +107,7 @@ def test_missing_install_space(tmp_path):
     plan = make_plan(['demo_nodes/talker'], str(tmp_path / 'nowhere'))
     assert execute(plan, install_base=str(tmp_path / 'nowhere'), command='colcon-wasm run',
                    err=err) == 1
-    assert "no install space at '{}'".format(tmp_path / 'nowhere') in err.getvalue()
+    assert f"no install space at '{tmp_path / 'nowhere'}'" in err.getvalue()
     assert "run 'colcon build --wasm'" in err.getvalue()
 
 

@@ -192,8 +192,8 @@ def test_container_and_load_requests(tmp_path, name, text):
     assert (listener['node_name'], listener['node_namespace'], listener['remap_rules'],
             listener['parameters'], listener['extra_arguments']) == (
         'listener', '/pushed', ['chatter:=/robot/news'], [], [])
-    assert loaded.to_json()['where'] == '<load_composable_node> at {}:{}'.format(
-        tmp_path / name, loaded.where[1])
+    assert loaded.to_json()['where'] == \
+        f'<load_composable_node> at {tmp_path / name}:{loaded.where[1]}'
 
 
 def test_conditions_and_a_container_of_another_launch(tmp_path):
@@ -232,12 +232,13 @@ def test_print_plan_shows_the_loads(tmp_path, capsys):
     assert execute(plan, install_base=install, print_plan=True, command='test') == 0
     lines = capsys.readouterr().out.splitlines()
     assert lines[0].startswith('[static_container-1] ')
-    assert lines[1].startswith('[load_node /my_container] {} {} --ros-args -r '
+    assert lines[1].startswith(f'[load_node /my_container] {TESTS} {TALKER} --ros-args -r '
                                'chatter:=/robot/news -r __node:=talker -r __ns:=/robot '
-                               '-p use_sim_time:=true -p rate:=5'.format(TESTS, TALKER)), lines
+                               '-p use_sim_time:=true -p rate:=5'), lines
     assert lines[1].endswith('-e use_intra_process_comms:=true')
-    assert lines[2] == ('[load_node /my_container] {} {} --ros-args -r chatter:=/robot/news '
-                        '-r __node:=listener -r __ns:=/pushed'.format(TESTS, LISTENER))
+    assert lines[2] == (f'[load_node /my_container] {TESTS} {LISTENER} --ros-args -r '
+                        'chatter:=/robot/news '
+                        '-r __node:=listener -r __ns:=/pushed')
 
 
 def _fake_install(base, *, types):
@@ -248,7 +249,7 @@ def _fake_install(base, *, types):
     (prefix / 'share' / TESTS / 'colcon_wasm').mkdir(parents=True)
     (prefix / 'share' / TESTS / 'colcon_wasm' / 'manifest.json').write_text(json.dumps({
         'schema': 1, 'package': TESTS, 'executables': [
-            {'name': 'static_container', 'js': 'lib/{}/static_container.js'.format(TESTS)}]}))
+            {'name': 'static_container', 'js': f'lib/{TESTS}/static_container.js'}]}))
     for package in ('composition_interfaces', 'rcl_interfaces'):
         share = base / package / 'share' / package / 'colcon_wasm'
         share.mkdir(parents=True)
@@ -263,8 +264,8 @@ def test_loads_need_the_composition_interfaces_types(tmp_path):
     _fake_install(tmp_path / 'install_wasm', types=False)
     with pytest.raises(LaunchError) as error:
         host_plan(plan, InstallSpace(tmp_path / 'install_wasm'))
-    assert str(error.value).startswith('{}:4: loading composable nodes calls '
-                                       'composition_interfaces/srv/LoadNode'.format(path))
+    assert str(error.value).startswith(f'{path}:4: loading composable nodes calls '
+                                       'composition_interfaces/srv/LoadNode')
     assert "colcon build --wasm --packages-up-to composition_interfaces'" in str(error.value)
 
 
@@ -311,7 +312,7 @@ def test_xml_errors_name_file_and_line(tmp_path, body, line, message):
     path = _write(tmp_path / 'bad.launch.xml', '<launch>\n' + body + '\n</launch>\n')
     with pytest.raises(LaunchError) as error:
         load_launch_file(path)
-    assert str(error.value).startswith('{}:{}: {}'.format(path, line, message)), str(error.value)
+    assert str(error.value).startswith(f'{path}:{line}: {message}'), str(error.value)
 
 
 @pytest.mark.parametrize('entry,line,message', [
@@ -330,7 +331,7 @@ def test_yaml_errors_name_file_and_line(tmp_path, entry, line, message):
     path = _write(tmp_path / 'bad.launch.yaml', 'launch:\n' + entry + '\n')
     with pytest.raises(LaunchError) as error:
         load_launch_file(path)
-    assert str(error.value).startswith('{}:{}: {}'.format(path, line, message)), str(error.value)
+    assert str(error.value).startswith(f'{path}:{line}: {message}'), str(error.value)
 
 
 # -------------------------------------------------------------- running them

@@ -31,8 +31,7 @@ def _check_tools():
     assert (JS / 'node_modules' / 'playwright-core').is_dir(), \
         'playwright-core is missing: run npm install in tests/js (no browser is downloaded)'
     assert Path(CHROMIUM).exists(), \
-        'no Chromium at {} (apt-get install chromium, or set COLCON_WASM_CHROMIUM)'.format(
-            CHROMIUM)
+        f'no Chromium at {CHROMIUM} (apt-get install chromium, or set COLCON_WASM_CHROMIUM)'
 
 
 @pytest.fixture(scope='module')
@@ -63,9 +62,10 @@ def _run_flow(url, flow, screenshots):
         cwd=str(JS), capture_output=True, text=True, timeout=600)
     steps = [json.loads(line) for line in result.stdout.splitlines() if line.startswith('{')]
     for s in steps:
-        print('{:45} {:5} {:6} ms {}'.format(s['step'], 'ok' if s['ok'] else 'FAIL', s['ms'],
-                                             {k: v for k, v in s.items() if k not in (
-                                                 'step', 'ok', 'ms', 'screenshot', 'error')}))
+        status = 'ok' if s['ok'] else 'FAIL'
+        rest = {k: v for k, v in s.items()
+                if k not in ('step', 'ok', 'ms', 'screenshot', 'error')}
+        print(f"{s['step']:45} {status:5} {s['ms']:6} ms {rest}")
     failed = [s for s in steps if not s['ok']]
     assert not failed and result.returncode == 0, (
         failed[0]['error'] if failed else result.stderr[-4000:])
@@ -80,14 +80,13 @@ def test_demo_flow_in_the_browser(served_demo):
                  'stopping-a-node-updates-the-graph', 'a-crash-is-reported-and-the-others-go-on',
                  'plot-of-a-numeric-topic', 'image-view-of-a-camera-topic',
                  'echo-keeps-up-with-1-kHz'):
-        assert name in steps, 'step {} did not run'.format(name)
+        assert name in steps, f'step {name} did not run'
     first = steps['open-with-run-talker-listener']['first_publish_ms']
     warm = steps['reopen-warm-first-publish']['first_publish_ms']
-    print('page open -> first publish: {} ms, {} ms with warm caches (goal: 1000 ms)'.format(
-        first, warm))
+    print(f'page open -> first publish: {first} ms, {warm} ms with warm caches (goal: 1000 ms)')
     fast = steps['echo-keeps-up-with-1-kHz']
-    print('echo of a 1 kHz topic: {} msg/s, longest frame {} ms'.format(
-        fast['echo_rate_hz'], fast['max_frame_gap_ms']))
+    print(f"echo of a 1 kHz topic: {fast['echo_rate_hz']} msg/s, "
+          f"longest frame {fast['max_frame_gap_ms']} ms")
 
 
 def test_not_isolated_page_shows_the_clear_message(served_demo):
@@ -110,8 +109,8 @@ def test_humble_rclcpp_examples_flow():
         url = next((line.split()[1] for line in process.stdout if line.startswith('Open ')), None)
         assert url, 'colcon-wasm serve did not start: ' + process.stderr.read()
         steps = _run_flow(url, 'humble', SCREENSHOTS / 'humble')
-        print('Humble: page open -> first publish: {} ms'.format(
-            steps['humble-open-with-run-publisher-subscriber']['first_publish_ms']))
+        first = steps['humble-open-with-run-publisher-subscriber']['first_publish_ms']
+        print(f'Humble: page open -> first publish: {first} ms')
     finally:
         process.terminate()
         process.wait(10)

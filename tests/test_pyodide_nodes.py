@@ -59,7 +59,7 @@ def test_python_and_cpp_nodes_hear_each_other_and_a_python_crash_is_contained(in
                for line in lines), out[-6000:]
     # the crasher: its traceback with file and line, reported as a crash
     tb = out.index('[crasher-5] Traceback (most recent call last):')
-    assert '[crasher-5]   File "{}", line 8, in explode'.format(DATA / 'crasher.py') in out[tb:]
+    assert f"[crasher-5]   File \"{DATA / 'crasher.py'}\", line 8, in explode" in out[tb:]
     assert '[crasher-5] ValueError: the Python crasher gives up' in out[tb:]
     died = [i for i, line in enumerate(lines) if line.startswith(
         '[ERROR] [crasher-5]: process has died [exit code 1, Python exception: ValueError: '
@@ -82,8 +82,8 @@ def test_python_services_and_clients_talk_to_cpp_ones(install):
                      r'\d+', out), out[-6000:]
     # Python client -> C++ server on /cpp_add_two_ints, int64 beyond 2**32 included
     for a in (1, 20, 2 ** 40):
-        assert '[py_client]: Result of add_two_ints: for {} + {} = {}'.format(
-            a, 2 * a, 3 * a) in out, out[-6000:]
+        assert (f'[py_client]: Result of add_two_ints: for {a} + {2 * a} = '
+                f'{3 * a}') in out, out[-6000:]
     assert '[INFO] [add_client-4]: process has finished cleanly' in out
     assert code == 0, out[-3000:]
 
@@ -100,19 +100,19 @@ def test_print_plan_lists_python_nodes(install):
     code, out = colcon_wasm('launch', '--install-base', install, '--print-plan',
                             '--python', DATA / 'talker.py', 'demo_nodes/listener')
     assert code == 0, out
-    assert '[talker-2] {}'.format(DATA / 'talker.py') in out.splitlines()
+    assert f"[talker-2] {DATA / 'talker.py'}" in out.splitlines()
 
 
 def test_missing_script_and_missing_pyodide_are_clear(install, tmp_path):
     code, out = colcon_wasm('run', '--install-base', install, '--python', tmp_path / 'nope.py')
     assert code == 1
-    assert "Python node '{}' does not exist".format(tmp_path / 'nope.py') in out
+    assert f"Python node '{tmp_path / 'nope.py'}' does not exist" in out
     (tmp_path / 'script.py').write_text('print(1)\n')
     code, out = colcon_wasm('run', '--install-base', install, '--pyodide', tmp_path,
                             '--python', tmp_path / 'script.py')
     assert code == 1
-    assert "Python nodes need Pyodide 314.0.8, and '{}' (--pyodide) lacks pyodide.mjs".format(
-        tmp_path) in out
+    assert (f"Python nodes need Pyodide 314.0.8, and '{tmp_path}' (--pyodide) lacks "
+            'pyodide.mjs') in out
     assert 'npm install --prefix' in out and 'pyodide@314.0.8' in out
     code, out = colcon_wasm('run', '--install-base', install)
     assert code == 1 and 'name PKG EXE (or a Python node with --python FILE' in out
@@ -122,6 +122,6 @@ def test_pyodide_version_is_pinned_once():
     """The Python side, the JS side and tests/js pin the same Pyodide release."""
     from colcon_wasm.launch.python_nodes import PYODIDE_VERSION
     spawn = (REPO / 'packages' / 'wasm_js' / 'src' / 'python' / 'spawn.mjs').read_text()
-    assert "PYODIDE_VERSION = '{}'".format(PYODIDE_VERSION) in spawn
+    assert f"PYODIDE_VERSION = '{PYODIDE_VERSION}'" in spawn
     package = (REPO / 'tests' / 'js' / 'package.json').read_text()
-    assert '"pyodide": "{}"'.format(PYODIDE_VERSION) in package
+    assert f'"pyodide": "{PYODIDE_VERSION}"' in package

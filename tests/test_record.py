@@ -128,7 +128,7 @@ def test_every_recorded_message_is_what_the_demo_published(recorded):
     frames = [m for m in messages if m[0] == '/camera/image']
     # the talker: 'Hello World: N', counts without a gap, up to the last one it logged
     counts = [d.count for _, _, _, d, _ in chatter]
-    assert all(d.data == 'Hello World: {}'.format(d.count) for _, _, _, d, _ in chatter)
+    assert all(d.data == f'Hello World: {d.count}' for _, _, _, d, _ in chatter)
     logged = [int(n) for n in re.findall(r"Publishing: 'Hello World: (\d+)'", recorded['out'])]
     assert counts == list(range(counts[0], counts[-1] + 1)), counts
     assert counts[0] <= 2 and counts[-1] in (logged[-1], logged[-1] + 1), (counts, logged)
@@ -137,7 +137,7 @@ def test_every_recorded_message_is_what_the_demo_published(recorded):
     first = next(k for k in range(40) if bytes(frames[0][3].data) == frame_pixels(k))
     for i, (_, _, _, d, _) in enumerate(frames):
         assert (d.width, d.height, d.encoding, d.step) == (160, 120, 'rgb8', 480)
-        assert bytes(d.data) == frame_pixels(first + i), 'frame {}'.format(first + i)
+        assert bytes(d.data) == frame_pixels(first + i), f'frame {first + i}'
     # times: inside the recording, in order per topic, about 100 ms apart for the camera
     for topic in ('/chatter', '/camera/image'):
         times = [m[1] for m in messages if m[0] == topic]
@@ -159,7 +159,7 @@ def test_rosbags_reads_the_recording(recorded):
         for connection, timestamp, raw in reader.messages():
             message = reader.deserialize(raw, connection.msgtype)
             if connection.topic == '/chatter':
-                assert message.data == 'Hello World: {}'.format(message.count)
+                assert message.data == f'Hello World: {message.count}'
             got.append((connection.topic, timestamp, bytes(raw)))
     assert sorted(got) == sorted(expected)
 
@@ -190,7 +190,7 @@ def _write_rosbags_bag(path, install, gaps_ms, extra_unknown=True):
         t = start
         for i, gap in enumerate(gaps_ms):
             t += int(gap * 1e6)
-            data = typestore.serialize_cdr(Chatter(data='played {}'.format(i), count=i),
+            data = typestore.serialize_cdr(Chatter(data=f'played {i}', count=i),
                                            CHATTER)
             writer.write(chatter, t, data)
             sent.append((t, bytes(data)))
@@ -266,8 +266,8 @@ def test_a_truncated_bag_plays_what_comes_before_and_names_the_record(install, r
     code, out, err = colcon_wasm('play', '--install-base', install, '--record', replay,
                                  '--rate', '5', cut)
     assert code == 1, out + err
-    assert 'the Chunk record at byte offset {} is cut off: the file ends at byte {}'.format(
-        start, start + length // 2) in err, err
+    assert (f'the Chunk record at byte offset {start} is cut off: the file ends at '
+            f'byte {start + length // 2}') in err, err
     assert len(mcap_messages(replay)) == _count_in(recorded['path'], chunks[:1]), err
 
 
@@ -288,8 +288,8 @@ def test_a_corrupt_chunk_is_named_by_offset(install, recorded, tmp_path):
     code, out, err = colcon_wasm('play', '--install-base', install, '--record', replay,
                                  '--rate', '5', bad)
     assert code == 1, out + err
-    assert re.search(r'the Chunk record at byte offset {} is corrupt \('.format(
-        target.chunk_start_offset), err), err
+    offset = target.chunk_start_offset
+    assert re.search(rf'the Chunk record at byte offset {offset} is corrupt \(', err), err
     assert len(mcap_messages(replay)) == _count_in(recorded['path'], chunks[:1])
 
 
@@ -327,7 +327,7 @@ def test_a_full_disk_stops_recording_and_the_file_stays_readable(install, tmp_pa
             'launch', '--install-base', install, '--duration', '6', '--record', path,
             '--record-compression', 'none', 'demo_nodes/camera', preexec_fn=limit)
         assert code == 1, out + err
-        assert re.search(r"recording to '.*full\.mcap' stopped: {}".format(why), err), err
+        assert re.search(rf"recording to '.*full\.mcap' stopped: {why}", err), err
         # the nodes ran on to the end
         assert 'stopping every process after 6 s (--duration)' in out, out
         # a stream reader reads it to its footer, with no error: whole chunks only
@@ -447,7 +447,7 @@ def test_recorded_offers_become_the_players_qos():
                                       'reliability': 'reliable',
                                       'durability': 'transient_local', 'lifespanMs': 2500.0}
     # offers that disagree: reliable and volatile, as rosbag2's player falls back
-    both = HUMBLE_OFFER + '\n' + IRON_OFFER
+    both = f'{HUMBLE_OFFER}\n{IRON_OFFER}'
     assert player_qos(both)['reliability'] == 'reliable'
     assert player_qos(both)['durability'] == 'volatile'
     assert player_qos('') == {'history': 'keep_last', 'depth': 10, 'reliability': 'reliable',

@@ -27,7 +27,7 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from colcon_wasm.server import relay_forms  # noqa: E402
+from colcon_wasm.server import relay_forms  # noqa: E402, I100, I202
 from colcon_wasm.server.relay import Relay  # noqa: E402
 
 JS = Path(__file__).resolve().parent / 'js'
@@ -39,9 +39,9 @@ TYPES = {
         't/msg/Time': {'fields': [{'name': 'sec', 'type': 'int32'},
                                   {'name': 'nanosec', 'type': 'uint32'}]},
         't/msg/All': {'fields': (
-            [{'name': k + '_v', 'type': k} for k in SCALARS]
-            + [{'name': k + '_seq', 'type': k, 'sequence': True} for k in SCALARS]
-            + [{'name': k + '_arr', 'type': k, 'array_size': 2} for k in SCALARS]
+            [{'name': f'{k}_v', 'type': k} for k in SCALARS]
+            + [{'name': f'{k}_seq', 'type': k, 'sequence': True} for k in SCALARS]
+            + [{'name': f'{k}_arr', 'type': k, 'array_size': 2} for k in SCALARS]
             + [{'name': 'time', 'type': 't/msg/Time'},
                {'name': 'times', 'type': 't/msg/Time', 'sequence': True},
                {'name': 'fixed_times', 'type': 't/msg/Time', 'array_size': 2},
@@ -82,7 +82,7 @@ def _node(payload):
 
 @pytest.fixture(scope='module')
 def node_forms():
-    """The Node.js server's forms of the cases below."""
+    """Get the Node.js server's forms of the cases below."""
     cases = [{'type': 't/msg/All', 'json': FULL}, {'type': 't/msg/All', 'json': {}},
              {'type': 't/msg/All', 'json': {'int64_v': '123', 'times': [{}, {'sec': -1}]}}]
     texts = ['{"op":"publish","topic":"/chatter","msg":{"data":"hello world 7"}}', '', 'x',
@@ -182,7 +182,8 @@ def test_fragments_join_to_the_text():
     text = json.dumps({'op': 'publish', 'msg': {'data': 'y' * 95}})
     parts = [json.loads(p) for p in relay_forms.fragments(text, 30, 'f1')]
     assert [p['num'] for p in parts] == list(range(len(parts)))
-    assert len(parts) == (len(text) + 29) // 30 and {p['total'] for p in parts} == {len(parts)} and {p['id'] for p in parts} == {'f1'}
+    assert len(parts) == (len(text) + 29) // 30
+    assert {p['total'] for p in parts} == {len(parts)} and {p['id'] for p in parts} == {'f1'}
     assert ''.join(p['data'] for p in parts) == text
     assert relay_forms.fragments(text, None, None) == [text]
 
@@ -216,7 +217,7 @@ class Client:
         response = b''
         while b'\r\n\r\n' not in response:
             chunk = sock.recv(4096)
-            assert chunk, 'the relay closed during the handshake: {!r}'.format(response)
+            assert chunk, f'the relay closed during the handshake: {response!r}'
             response += chunk
         head, client.buffer = response.split(b'\r\n\r\n', 1)
         assert head.startswith(b'HTTP/1.1 101'), head
@@ -273,7 +274,7 @@ class Client:
 
 @pytest.fixture
 def relay():
-    """A relay of the test types."""
+    """Make a relay of the test types."""
     r = Relay(types=[TYPES])
     yield r
     r.close()
@@ -365,7 +366,7 @@ def _cbor(obj):
 
 
 def test_png_fragments_and_binary_limits_on_subscriptions():
-    """png and fragment_size as subscribed; a binary request past the size limit is dropped."""
+    """Check png and fragment_size subscriptions, and the binary size limit."""
     relay = Relay(types=[TYPES], max_message_bytes=400)
     try:
         pub, png, frag = Client(relay), Client(relay), Client(relay)

@@ -43,7 +43,8 @@ CLIENT = """
              param: [{name: greeting, value: from_client}]}
     - node: {pkg: rmw_wasm_cpp_node_tests, exec: probe, args: listener, name: news_listener,
              remap: [{from: chatter, to: news}]}
-    - node: {pkg: rmw_wasm_cpp_node_tests, exec: probe, args: caller, remap: [{from: hold, to: add}]}
+    - node: {pkg: rmw_wasm_cpp_node_tests, exec: probe, args: caller,
+             remap: [{from: hold, to: add}]}
 """
 
 
@@ -70,15 +71,16 @@ def test_node_launch_bridged_both_ways_before_and_after_the_server_starts(instal
     port = _free_port()
     server_file = _write(tmp_path, 'server.launch.yaml', SERVER)
     client_file = _write(tmp_path, 'client.launch.yaml', CLIENT)
-    url = 'ws://127.0.0.1:{}'.format(port)
-    with BackgroundLaunch(install, '--rosbridge-connect', url, client_file, wait_url=False) as client:
-        client.wait_for('cannot connect to {} yet; retrying'.format(url), timeout=60)
+    url = f'ws://127.0.0.1:{port}'
+    with BackgroundLaunch(install, '--rosbridge-connect', url, client_file,
+                          wait_url=False) as client:
+        client.wait_for(f'cannot connect to {url} yet; retrying', timeout=60)
         client.wait_for('NAME /talker TOPIC /chatter', timeout=60)
         client.wait_for('[talker]: info line', timeout=30)
         time.sleep(3)  # 30 messages at 10 Hz: more than the talker's KEEP_LAST 10
-        with BackgroundLaunch(install, '--rosbridge', '127.0.0.1:{}'.format(port),
+        with BackgroundLaunch(install, '--rosbridge', f'127.0.0.1:{port}',
                               server_file) as server:
-            client.wait_for('connected to {}'.format(url), timeout=30)
+            client.wait_for(f'connected to {url}', timeout=30)
             # client -> server: the talker's messages reach the C++ listener of the server
             server.wait_for(re.compile(r'\[probe_listener\]: HEARD from_client \d+'), timeout=30)
             # server -> client: the server's talker reaches the client's listener
@@ -87,7 +89,8 @@ def test_node_launch_bridged_both_ways_before_and_after_the_server_starts(instal
             client.wait_for('[caller]: RESULT 5', timeout=30)
             server.wait_for('[add_server]: ANSWERED 5', timeout=10)
             report = client.wait_for(re.compile(
-                r'/chatter: (\d+) older messages were replaced \(KEEP_LAST\) and 0 lost'), timeout=10)
+                r'/chatter: (\d+) older messages were replaced \(KEEP_LAST\) and 0 '
+                r'lost'), timeout=10)
             assert int(report.group(1)) > 0
             heard = [int(n) for n in re.findall(r'HEARD from_client (\d+)', server.output())]
             # the last 10 queued while the server was away, then the live ones, in order
@@ -103,7 +106,7 @@ def test_server_restarted_mid_stream_reliable_messages_arrive_in_order(install, 
         launch:
         - node: {pkg: rmw_wasm_cpp_node_tests, exec: probe, args: keep_all_listener}
     """)
-    address = ['--rosbridge', '127.0.0.1:{}'.format(port)]
+    address = ['--rosbridge', f'127.0.0.1:{port}']
     first = BackgroundLaunch(install, *address, server_file)
     first.wait_for('process started', timeout=30)
     wasm_js = _runtime_dir(install)
@@ -117,8 +120,8 @@ def test_server_restarted_mid_stream_reliable_messages_arrive_in_order(install, 
         second = BackgroundLaunch(install, *address, server_file)
         try:
             out, _ = client.communicate(timeout=60)
-            second.wait_for(re.compile(r'HEARD seq {}$'.format(
-                re.search(r'PUBLISHED (\d+) LAST', out).group(1))), timeout=20)
+            seq = re.search(r'PUBLISHED (\d+) LAST', out).group(1)
+            second.wait_for(re.compile(rf'HEARD seq {seq}$'), timeout=20)
         finally:
             second.stop()
     finally:
@@ -136,7 +139,7 @@ def test_server_restarted_mid_stream_reliable_messages_arrive_in_order(install, 
 
 
 def _runtime_dir(install):
-    """The install space's wasm_js runtime (the one the executables were built with)."""
+    """Get the install space's wasm_js runtime (the one the executables were built with)."""
     from colcon_wasm.launch.install_space import InstallSpace
     return InstallSpace(install).package('wasm_js').share / 'src'
 
@@ -159,16 +162,19 @@ def test_page_bridged_to_a_node_launch_both_ways(install, tmp_path):
                           '-r', '__node:=page_talker']},
                 {'start': 'listener', 'pkg': 'rmw_wasm_cpp_node_tests', 'exe': 'probe',
                  'args': ['listener', '--ros-args', '-r', 'chatter:=news']},
-                {'until': "colconWasm.session.bridge && colconWasm.session.bridge.state === 'connected'"},
+                {'until': 'colconWasm.session.bridge && colconWasm.session.bridge.state === '
+                          "'connected'"},
                 {'wait': 'listener', 'regex': r'HEARD from_server \d+', 'count': 3},
-                {'until': "colconWasm.session.graph.nodes.filter((n) => n.remote).map((n) => n.fqn + ' ' + n.process).join('\\n') || null",
+                {'until': 'colconWasm.session.graph.nodes.filter((n) => n.remote).map((n) => '
+                          "n.fqn + ' ' + n.process).join('\\n') || null",
                  'save': 'remote'},
-                {'until': "document.querySelector('#rosbridge-state').textContent", 'save': 'chip'},
-            ], query='?rosbridge={}'.format(server.url))
+                {'until': "document.querySelector('#rosbridge-state').textContent",
+                 'save': 'chip'},
+            ], query=f'?rosbridge={server.url}')
             assert result['ok'], explain_page(result)
             server.wait_for(re.compile(r'\[probe_listener\]: HEARD from_page \d+'), timeout=30)
     remote = result['saved']['remote']
-    assert '/add_server remote {}'.format(server.url) in remote, remote
+    assert f'/add_server remote {server.url}' in remote, remote
     assert '/news_talker remote' in remote, remote
     assert result['saved']['chip'] == 'rosbridge: connected', result['saved']
 
@@ -180,17 +186,16 @@ def test_page_bridged_to_a_node_launch_both_ways(install, tmp_path):
 def test_actions_cross_the_bridge(install, tmp_path, server_side, client_side):
     """A C++ action client and server on either side: goal, feedback and result cross."""
     def launch_file(name, exe):
-        package = 'examples_rclcpp_minimal_action_{}'.format(
-            'server' if 'server' in exe else 'client')
-        return _write(tmp_path, name, """
+        package = f"examples_rclcpp_minimal_action_{'server' if 'server' in exe else 'client'}"
+        return _write(tmp_path, name, f"""
             launch:
-            - node: {{pkg: {}, exec: {}}}
-        """.format(package, exe))
+            - node: {{pkg: {package}, exec: {exe}}}
+        """)
     with BackgroundLaunch(install, '--rosbridge', '127.0.0.1:0',
                           launch_file('a.launch.yaml', server_side)) as server:
         with BackgroundLaunch(install, '--rosbridge-connect', server.url,
                               launch_file('b.launch.yaml', client_side), wait_url=False) as client:
-            client.wait_for('connected to {}'.format(server.url), timeout=30)
+            client.wait_for(f'connected to {server.url}', timeout=30)
             where = client if 'client' in client_side else server
             where.wait_for('result received', timeout=60)
             where.wait_for('process has finished cleanly', timeout=10)

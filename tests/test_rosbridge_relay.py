@@ -27,7 +27,8 @@ from rclcpp_build import rclcpp_build  # noqa: E402, I100, I202
 from rosbridge_launch import node_script  # noqa: E402
 
 PROBE = {'pkg': 'rmw_wasm_cpp_node_tests', 'exe': 'probe'}
-CONNECTED = "colconWasm.session.bridge && colconWasm.session.bridge.state === 'connected' && colconWasm.session.bridge.relay"
+CONNECTED = ("colconWasm.session.bridge && colconWasm.session.bridge.state === 'connected' "
+             '&& colconWasm.session.bridge.relay')
 
 
 @pytest.fixture(scope='module')
@@ -65,8 +66,10 @@ def test_two_tabs_share_one_graph(served):
         dict(PROBE, start='listener', args=['listener']),
         {'until': CONNECTED},
         {'wait': 'listener', 'regex': r'HEARD from_tab_one \d+', 'count': 5, 'timeoutMs': 30000},
-        {'until': "colconWasm.session.graph.nodes.some((n) => n.remote && n.fqn === '/param_talker') "
-                  "&& colconWasm.session.graph.nodes.filter((n) => n.remote).map((n) => n.fqn + ' ' + n.process).join('\\n')",
+        {'until': 'colconWasm.session.graph.nodes.some((n) => n.remote && n.fqn === '
+                  "'/param_talker') "
+                  "&& colconWasm.session.graph.nodes.filter((n) => n.remote).map((n) => n.fqn + ' "
+                  "' + n.process).join('\\n')",
          'save': 'remote', 'timeoutMs': 10000},
     ]
     with ThreadPoolExecutor(2) as pool:
@@ -181,7 +184,7 @@ def test_json_publisher_to_cbor_raw_and_bad_binary_on_the_relay_port(served):
               'compression': 'cbor-raw'})
     time.sleep(0.3)
     for i in range(3):
-        pub.send({'op': 'publish', 'topic': '/plain', 'msg': {'data': 'json {}'.format(i)}})
+        pub.send({'op': 'publish', 'topic': '/plain', 'msg': {'data': f'json {i}'}})
     seen = [sub.receive() for _ in range(4)]
     assert [m['op'] for m in seen].count('status') == 1, seen
     assert [m['msg']['data'] for m in seen if m['op'] == 'publish'] == [

@@ -66,7 +66,7 @@ def server(install, tmp_path_factory):
 
 
 def test_roslibjs_graph_fields_publish_and_call(server):
-    """RosLib getTopics/getNodes/getServices, typed fields, publish into C++, call C++."""
+    """Check RosLib getTopics/getNodes/getServices, typed fields, publish into C++, call C++."""
     r = node_script('rosbridge_roslib.mjs', 'basic', server.url)
     topics = dict(zip(r['topics']['topics'], r['topics']['types']))
     assert topics['/chatter'] == 'std_msgs/msg/String'
@@ -171,13 +171,16 @@ def test_bad_input_gets_status_errors_and_the_connection_stays(server):
     expect = {
         'malformed': 'malformed JSON', 'not an object': 'must be a JSON object',
         'no op': "no 'op' field", 'unknown op': 'unknown operation "fly"',
-        'missing topic': "field 'topic' is missing", 'topic wrong type': "field 'topic' must be a string",
+        'missing topic': "field 'topic' is "
+                         'missing', 'topic wrong type': "field 'topic' must be a string",
         'bad throttle': "field 'throttle_rate' must be an integer",
         'bad compression': "field 'compression' must be one of",
         'unknown type': "unknown message type 'no_pkg/msg/Nothing'",
-        'bad topic name': 'not a valid ROS name', 'wrong field type': "field 'data': expected a string",
+        'bad topic '
+        'name': 'not a valid ROS name', 'wrong field type': "field 'data': expected a string",
         'unknown field': "has no field 'text'", 'missing msg': "field 'msg' is missing",
-        'wrong args': "field 'a': expected an integer", 'missing service': "field 'service' is missing",
+        'wrong args': "field 'a': expected an "
+                      'integer', 'missing service': "field 'service' is missing",
         'bad level': "field 'level' must be one of", 'bad fragment': "field 'num'",
         'unknown action type': "unknown action type 'nope/action/Nope'",
         'response without advertise': 'has not been advertised',
@@ -198,13 +201,13 @@ def test_a_client_that_stops_reading_is_cut_off(server):
     r = node_script('rosbridge_raw.mjs', 'slow', server.url, timeout=120)
     assert r['closed'] is not None, r
     assert r['received'] == r['sent'], r
-    server.wait_for('cut off: the client did not read: more than {} bytes'.format(MAX_QUEUED),
+    server.wait_for(f'cut off: the client did not read: more than {MAX_QUEUED} bytes',
                     timeout=10)
 
 
 @pytest.fixture(scope='module')
 def guarded(install, tmp_path_factory):
-    """A server with a token, a capability list and a message size limit."""
+    """Start a server with a token, a capability list and a message size limit."""
     folder = tmp_path_factory.mktemp('guarded')
     launch = folder / 'guarded.launch.yaml'
     launch.write_text(textwrap.dedent("""
@@ -235,7 +238,7 @@ def test_token_is_checked_on_connect(guarded):
 
 def test_capability_list_refuses_with_status_errors(guarded):
     """What the list does not grant is refused by name; what it grants works."""
-    r = node_script('rosbridge_raw.mjs', 'capabilities', '{}/?token={}'.format(guarded.url, TOKEN))
+    r = node_script('rosbridge_raw.mjs', 'capabilities', f'{guarded.url}/?token={TOKEN}')
     assert "not allowed to subscribe '/secret'" in r['refused']['subscribe'], r
     assert "not allowed to publish '/chatter'" in r['refused']['publish'], r
     assert "allows 'publish' only for /allowed/*" in r['refused']['publish'], r
@@ -246,9 +249,9 @@ def test_capability_list_refuses_with_status_errors(guarded):
 
 def test_oversized_message_is_dropped_with_a_status_error(guarded):
     """A message over --rosbridge-max-message-bytes: a status error, the connection stays up."""
-    r = node_script('rosbridge_raw.mjs', 'oversize', '{}/?token={}'.format(guarded.url, TOKEN),
+    r = node_script('rosbridge_raw.mjs', 'oversize', f'{guarded.url}/?token={TOKEN}',
                     MAX_MESSAGE)
-    assert 'larger than the limit of {} bytes'.format(MAX_MESSAGE) in r['status']['msg'], r
+    assert f'larger than the limit of {MAX_MESSAGE} bytes' in r['status']['msg'], r
     assert r['after'], r
 
 
@@ -261,12 +264,12 @@ def test_port_in_use_is_reported_as_serve_reports_it(install, tmp_path):
     try:
         result = subprocess.run(
             [str(demo_build.venv_tool('colcon-wasm')), 'launch', '--install-base', str(install),
-             '--rosbridge', '127.0.0.1:{}'.format(port), '--duration', '5',
+             '--rosbridge', f'127.0.0.1:{port}', '--duration', '5',
              'rmw_wasm_cpp_node_tests/probe'], capture_output=True, text=True, timeout=60)
     finally:
         taken.close()
     assert result.returncode == 1
-    assert 'colcon-wasm launch: port {} on 127.0.0.1 is already in use'.format(port) in \
+    assert f'colcon-wasm launch: port {port} on 127.0.0.1 is already in use' in \
         result.stderr, result.stderr
     assert 'pass --rosbridge HOST:PORT (port 0 picks a free port)' in result.stderr
     assert 'process started' not in result.stdout

@@ -21,7 +21,7 @@ def test_rosbridge_modules():
     node = shutil.which('node')
     assert node, 'Node.js 20 is needed (apt-get install nodejs)'
     if not (JS / 'node_modules' / 'ws').is_dir():
-        pytest.skip('npm packages missing: run `npm ci` in {}'.format(JS))
+        pytest.skip(f'npm packages missing: run `npm ci` in {JS}')
     result = subprocess.run(
         [node, '--test', '--test-reporter=tap', str(JS / 'test_rosbridge_units.mjs')],
         cwd=str(JS), capture_output=True, text=True, timeout=120)

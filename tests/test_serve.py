@@ -275,7 +275,7 @@ def test_page_preloads_its_module_graph_and_the_run_executables(server):
     html = body.decode()
     for module in ('/launcher/app.mjs', '/launcher/session.mjs', '/launcher/views/topics.mjs',
                    '/wasm_js/index.mjs', '/wasm_js/dep.mjs', '/wasm_js/tools/deep.mjs'):
-        assert '<link rel="modulepreload" href="{}">'.format(module) in html, module
+        assert f'<link rel="modulepreload" href="{module}">' in html, module
     assert '<link rel="preload" href="/ws/demo_nodes/lib/demo_nodes/talker.wasm" as="fetch" ' \
         'crossorigin>' in html
     assert html.count('rel="preload"') == 1
@@ -288,8 +288,8 @@ def test_port_already_taken_is_a_clear_error(install, server):
         make_server(InstallSpace(base), host='127.0.0.1', port=port, launcher_dir=LAUNCHER,
                     runtime_dir=runtime, runtime_origin='test')
     assert str(info.value) == (
-        'port {} on 127.0.0.1 is already in use (another colcon-wasm serve, or another '
-        'server?): stop it, or pass --port N (--port 0 picks a free port)'.format(port))
+        f'port {port} on 127.0.0.1 is already in use (another colcon-wasm serve, or another '
+        'server?): stop it, or pass --port N (--port 0 picks a free port)')
 
 
 def test_port_taken_by_another_program(install):
@@ -353,8 +353,9 @@ def test_cli_without_an_install_space(tmp_path):
                             capture_output=True, text=True, timeout=60)
     assert result.returncode == 1
     assert result.stderr == (
-        "colcon-wasm serve: no install space at '{}': run 'colcon build --wasm' in the workspace "
-        'first, or pass --install-base DIR\n'.format(tmp_path / 'nope'))
+        f"colcon-wasm serve: no install space at '{tmp_path / 'nope'}': run 'colcon build --wasm' "
+        'in the workspace '
+        'first, or pass --install-base DIR\n')
 
 
 def test_cli_port_taken_and_serving(install, server):
@@ -363,13 +364,13 @@ def test_cli_port_taken_and_serving(install, server):
     result = subprocess.run([_colcon_wasm(), 'serve', '--install-base', str(base),
                              '--port', str(port)], capture_output=True, text=True, timeout=60)
     assert result.returncode == 1
-    assert 'colcon-wasm serve: port {} on 127.0.0.1 is already in use'.format(port) \
+    assert f'colcon-wasm serve: port {port} on 127.0.0.1 is already in use' \
         in result.stderr
     process = subprocess.Popen([_colcon_wasm(), 'serve', '--install-base', str(base),
                                 '--port', '0'], stdout=subprocess.PIPE, text=True)
     try:
         lines = [process.stdout.readline() for _ in range(3)]
-        assert lines[0] == 'Serving 2 executable(s) of {}\n'.format(base)
+        assert lines[0] == f'Serving 2 executable(s) of {base}\n'
         url = lines[2].split()[1]
         with urllib.request.urlopen(url + 'workspace.json', timeout=30) as response:
             assert response.headers['Cross-Origin-Embedder-Policy'] == 'require-corp'

@@ -143,7 +143,8 @@ def test_errors_name_the_file_the_line_and_the_problem(text, expected):
     message = str(info.value)
     assert expected in message
     # the error is on the last line; line 1 is the header comment
-    assert message.startswith('/ws/share/pkg/msg/T.msg:{}: '.format(1 + text.count('\n')))
+    line = 1 + text.count('\n')
+    assert message.startswith(f'/ws/share/pkg/msg/T.msg:{line}: ')
 
 
 def test_service_sections_and_line_numbers():
@@ -232,7 +233,7 @@ def test_write_type_descriptions_reports_the_bad_file(tmp_path):
     bad.write_text('int32 ok\nfloat33 nope\n')
     with pytest.raises(TypeDescriptionError) as info:
         typedesc.write_type_descriptions(tmp_path, 'p')
-    assert str(info.value).startswith('{}:2: field nope:'.format(bad))
+    assert str(info.value).startswith(f'{bad}:2: field nope:')
 
 
 # --- against rosidl_adapter's own parser, on every definition in Humble ---
@@ -241,7 +242,7 @@ def _humble_archive():
     root = Path(os.environ.get('COLCON_WASM_HUMBLE', REPO.parent / 'shared' / 'humble'))
     archive = root / 'src.tar.xz'
     if not archive.is_file():
-        pytest.skip('Humble snapshot not found at {} (set COLCON_WASM_HUMBLE)'.format(root))
+        pytest.skip(f'Humble snapshot not found at {root} (set COLCON_WASM_HUMBLE)')
     return archive
 
 
@@ -276,7 +277,7 @@ def _reference_field(field, package):
         if t.string_upper_bound:
             entry['string_bound'] = t.string_upper_bound
     else:
-        entry = {'type': '{}/msg/{}'.format(t.pkg_name, t.type)}
+        entry = {'type': f'{t.pkg_name}/msg/{t.type}'}
     if t.is_array:
         if t.is_fixed_size_array():
             entry['array_size'] = t.array_size
@@ -318,16 +319,16 @@ def test_every_humble_definition_matches_rosidl_adapter(humble_interfaces, capsy
         text = path.read_text(encoding='utf-8')
         if kind == 'msg':
             ours = typedesc.describe_message(package, name, text, source=path)
-            _compare(ours['{}/msg/{}'.format(package, name)],
+            _compare(ours[f'{package}/msg/{name}'],
                      parser.parse_message_string(package, name, text), package)
         elif kind == 'srv':
             ours, _ = typedesc.describe_service(package, name, text, source=path)
             spec = parser.parse_service_string(package, name, text)
-            _compare(ours['{}/srv/{}_Request'.format(package, name)], spec.request, package)
-            _compare(ours['{}/srv/{}_Response'.format(package, name)], spec.response, package)
+            _compare(ours[f'{package}/srv/{name}_Request'], spec.request, package)
+            _compare(ours[f'{package}/srv/{name}_Response'], spec.response, package)
         else:
             ours, _ = typedesc.describe_action(package, name, text, source=path)
             spec = parser.parse_action_string(package, name, text)
             for part in ('goal', 'result', 'feedback'):
-                _compare(ours['{}/action/{}_{}'.format(package, name, part.capitalize())],
+                _compare(ours[f'{package}/action/{name}_{part.capitalize()}'],
                          getattr(spec, part), package)

@@ -11,20 +11,19 @@ else()
   set(BUILD_TESTING OFF CACHE BOOL "colcon-wasm: tests are built with --wasm-tests" FORCE)
 endif()
 
+# the settings of the --wasm options: no defaults here (colcon_wasm/options.py)
+include("${CMAKE_CURRENT_LIST_DIR}/wasm-ros-require.cmake")
+colcon_wasm_require(COLCON_WASM_DEBUG COLCON_WASM_OPT_LEVEL COLCON_WASM_LINK_OPT_LEVEL)
+
 if(COLCON_WASM_DEBUG)
   set(CMAKE_BUILD_TYPE Debug CACHE STRING "colcon-wasm: --wasm-debug")
 else()
   set(CMAKE_BUILD_TYPE Release CACHE STRING "colcon-wasm: default build type")
 endif()
 
-# The optimization flags. Set here because CMake appends "-O3 -DNDEBUG" to
-# the toolchain's Release defaults, which would override --wasm-opt-level.
-if(NOT COLCON_WASM_OPT_LEVEL)
-  set(COLCON_WASM_OPT_LEVEL 2)
-endif()
-if("${COLCON_WASM_LINK_OPT_LEVEL}" STREQUAL "")
-  set(COLCON_WASM_LINK_OPT_LEVEL "${COLCON_WASM_OPT_LEVEL}")
-endif()
+# The Release and Debug flags: the one place they are set. As cache values
+# (not the toolchain's *_INIT defaults) because CMake appends "-O3 -DNDEBUG"
+# to those, which would override --wasm-opt-level.
 foreach(_lang C CXX)
   set(CMAKE_${_lang}_FLAGS_RELEASE "-O${COLCON_WASM_OPT_LEVEL} -DNDEBUG" CACHE STRING
     "colcon-wasm: --wasm-opt-level")
@@ -32,6 +31,8 @@ foreach(_lang C CXX)
 endforeach()
 set(CMAKE_EXE_LINKER_FLAGS_RELEASE "-O${COLCON_WASM_LINK_OPT_LEVEL}" CACHE STRING
   "colcon-wasm: --wasm-link-opt-level")
+set(CMAKE_EXE_LINKER_FLAGS_DEBUG "-g -O0 -sASSERTIONS=2" CACHE STRING
+  "colcon-wasm: --wasm-debug")
 
 # one middleware, linked statically, no runtime selection (no dlopen)
 set(RMW_IMPLEMENTATION rmw_wasm_cpp CACHE STRING "colcon-wasm: the one RMW")

@@ -1,6 +1,8 @@
 # colcon-wasm toolchain layer over Emscripten's own toolchain file.
 #
-# colcon-wasm passes these cache variables (see colcon_wasm/options.py):
+# colcon-wasm passes these cache variables (see colcon_wasm/options.py, whose
+# OPTIONS table maps each --wasm option to its variable and holds the
+# defaults; an unset setting stops the configure, see wasm-ros-require.cmake):
 #   COLCON_WASM_EMSCRIPTEN_ROOT  Emscripten root (holds cmake/Modules/Platform)
 #   COLCON_WASM_EMSCRIPTEN_BIN   folder of emcc, em++, emar, emranlib
 #   COLCON_WASM_INSTALL_BASE     the wasm install base (packages find each other there)
@@ -8,7 +10,7 @@
 #   COLCON_WASM_PTHREAD_POOL_SIZE  workers started with each executable
 #   COLCON_WASM_DEBUG            ON: -g and -sASSERTIONS=2
 #   COLCON_WASM_OPT_LEVEL        1, 2, 3, s or z (Release compile flags)
-#   COLCON_WASM_LINK_OPT_LEVEL   0, 1, 2, 3, s or z (Release link flags; default: OPT_LEVEL)
+#   COLCON_WASM_LINK_OPT_LEVEL   0, 1, 2, 3, s or z (Release link flags)
 #   COLCON_WASM_ENV              KEY=VALUE;... set while CMake configures (recipe env)
 #   COLCON_WASM_PYTHON           the interpreter running colcon (runs the compile launcher)
 #   COLCON_WASM_COMPILER_LAUNCHER  ON (default when COLCON_WASM_PYTHON is set): compile
@@ -33,22 +35,9 @@ set(_colcon_wasm_vars
   COLCON_WASM_PROBED_CACHE)
 list(APPEND CMAKE_TRY_COMPILE_PLATFORM_VARIABLES ${_colcon_wasm_vars})
 
-if(NOT COLCON_WASM_EMSCRIPTEN_ROOT)
-  message(FATAL_ERROR "colcon-wasm: COLCON_WASM_EMSCRIPTEN_ROOT is not set; "
-    "this toolchain file is meant to be used through `colcon build --wasm`")
-endif()
-if(NOT DEFINED COLCON_WASM_PTHREAD)
-  set(COLCON_WASM_PTHREAD ON)
-endif()
-if(NOT DEFINED COLCON_WASM_PTHREAD_POOL_SIZE OR COLCON_WASM_PTHREAD_POOL_SIZE STREQUAL "")
-  set(COLCON_WASM_PTHREAD_POOL_SIZE 4)
-endif()
-if(NOT COLCON_WASM_OPT_LEVEL)
-  set(COLCON_WASM_OPT_LEVEL 2)
-endif()
-if(COLCON_WASM_LINK_OPT_LEVEL STREQUAL "")
-  set(COLCON_WASM_LINK_OPT_LEVEL "${COLCON_WASM_OPT_LEVEL}")
-endif()
+# the settings of the --wasm options: no defaults here (colcon_wasm/options.py)
+include("${CMAKE_CURRENT_LIST_DIR}/wasm-ros-require.cmake")
+colcon_wasm_require(COLCON_WASM_EMSCRIPTEN_ROOT COLCON_WASM_PTHREAD COLCON_WASM_PTHREAD_POOL_SIZE)
 
 # the recipe's per-package environment, for the configure step
 foreach(_colcon_wasm_kv IN LISTS COLCON_WASM_ENV)
@@ -156,15 +145,8 @@ if(NOT _colcon_wasm_flags_appended)
   string(APPEND CMAKE_EXE_LINKER_FLAGS_INIT " ${_colcon_wasm_link}")
 endif()
 
-# Release (the default build type, see wasm-ros-cache.cmake) and debug mode.
-# CMake appends its own "-O3 -DNDEBUG" to the Release compile flags after
-# this file; wasm-ros-cache.cmake sets the final cache values.
-set(CMAKE_C_FLAGS_RELEASE_INIT "-O${COLCON_WASM_OPT_LEVEL} -DNDEBUG")
-set(CMAKE_CXX_FLAGS_RELEASE_INIT "-O${COLCON_WASM_OPT_LEVEL} -DNDEBUG")
-set(CMAKE_EXE_LINKER_FLAGS_RELEASE_INIT "-O${COLCON_WASM_LINK_OPT_LEVEL}")
-set(CMAKE_C_FLAGS_DEBUG_INIT "-g -O0")
-set(CMAKE_CXX_FLAGS_DEBUG_INIT "-g -O0")
-set(CMAKE_EXE_LINKER_FLAGS_DEBUG_INIT "-g -O0 -sASSERTIONS=2")
+# The Release and Debug flags (--wasm-opt-level, --wasm-link-opt-level,
+# --wasm-debug) are set in one place: wasm-ros-cache.cmake.
 
 # Compile-only steps run clang directly (colcon_wasm/compile_launcher.py asks
 # emcc once per set of flags which clang command it would run). A launcher

@@ -56,7 +56,7 @@ def small_bag(path, install, count, period_ns):
         c = writer.add_connection('/chatter', CHATTER, typestore=typestore)
         for i in range(count):
             writer.write(c, 1_700_000_000_000_000_000 + i * period_ns, typestore.serialize_cdr(
-                Chatter(data='Hello World: {}'.format(i), count=i), CHATTER))
+                Chatter(data=f'Hello World: {i}', count=i), CHATTER))
 
 
 def times(path, topic):
@@ -91,7 +91,7 @@ def main():
     small_bag(bag, args.install, args.messages, 1_000_000)
     length = (args.messages - 1) / 1000
     for rate in ('20', '100000'):
-        replay = work / 'replay{}.mcap'.format(rate)
+        replay = work / f'replay{rate}.mcap'
         code, out, err, cpu, wall = colcon_wasm('play', '--install-base', args.install,
                                                 '--record', replay, '--rate', rate, bag)
         assert code == 0, out + err
@@ -101,11 +101,14 @@ def main():
         (first, t0), (last, t1) = seen[0], seen[-1]
         span = (t1 - t0) / 1e9
         played = re.search(r'played (\d+) messages', out + err)
-        rows.append(('replay, {} small messages (a 1 kHz bag of {:.0f} s), --rate {}'.format(
-            args.messages, length, rate), '{:.0f}x real time ({} published in {:.2f} s; '
-            '{:.1f} s for the command; the recorder, in the same tools worker, kept {})'.format(
-                (last - first) / 1000 / span, played.group(1) if played else '?', span, wall,
-                len(seen)), '>= 20x'))
+        count = played.group(1) if played else '?'
+        rows.append((
+            f'replay, {args.messages} small messages (a 1 kHz bag of {length:.0f} s), '
+            f'--rate {rate}',
+            f'{(last - first) / 1000 / span:.0f}x real time ({count} published in {span:.2f} s; '
+            f'{wall:.1f} s for the command; the recorder, in the same tools worker, kept '
+            f'{len(seen)})',
+            '>= 20x'))
 
     launch = work / 'load.launch.yaml'
     launch.write_text(
@@ -126,16 +129,15 @@ def main():
     frames = times(recorded, '/camera/image')
     published = len([1 for line in out.splitlines() if 'Publishing:' in line])
     overhead = (rec_cpu - base_cpu) / args.seconds * 100
-    rows.append(('record 1 kHz talker + 30 Hz 640x480 rgb8 for {:.0f} s'.format(args.seconds),
-                 '{:+.0f} % of one core ({:.1f} s CPU without, {:.1f} s with --record); '
-                 '{} chatter messages recorded of {} logged, {} frames ({:.1f} Hz)'.format(
-                     overhead, base_cpu, rec_cpu, len(chatter), published, len(frames),
-                     len(frames) / args.seconds),
+    rows.append((f'record 1 kHz talker + 30 Hz 640x480 rgb8 for {args.seconds:.0f} s',
+                 f'{overhead:+.0f} % of one core ({base_cpu:.1f} s CPU without, {rec_cpu:.1f} s '
+                 f'with --record); {len(chatter)} chatter messages recorded of {published} '
+                 f'logged, {len(frames)} frames ({len(frames) / args.seconds:.1f} Hz)',
                  'no loss, <= 5 % CPU'))
     print('| measure | result | goal |')
     print('|---|---|---|')
     for r in rows:
-        print('| {} | {} | {} |'.format(*r))
+        print(f'| {r[0]} | {r[1]} | {r[2]} |')
 
 
 if __name__ == '__main__':

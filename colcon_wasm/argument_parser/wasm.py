@@ -9,6 +9,7 @@ from colcon_core.argument_parser import ArgumentParserDecorator
 from colcon_core.argument_parser import ArgumentParserDecoratorExtensionPoint
 from colcon_core.logging import colcon_logger
 from colcon_core.plugin_system import satisfies_version
+from colcon_wasm.verb_start import wrap_verb_main
 
 logger = colcon_logger.getChild(__name__)
 
@@ -60,10 +61,13 @@ class WasmArgumentParserDecorator(ArgumentParserDecoratorExtensionPoint):
 
 
 class WasmArgumentDecorator(ArgumentParserDecorator):
-    """Apply the `--wasm` default bases after parsing."""
+    """Apply the `--wasm` default bases after parsing, and start verbs with the wasm steps."""
 
     def parse_args(self, *args, **kwargs):
-        """Parse, then switch default bases for `--wasm`."""
+        """Parse, then switch default bases for `--wasm` and wrap the verb's main."""
         parsed = self._parser.parse_args(*args, **kwargs)
         apply_wasm_default_bases(parsed)
+        # the build and test verbs find Emscripten and set the environment
+        # when they start, not in package selection
+        wrap_verb_main(parsed)
         return parsed

@@ -6,7 +6,9 @@ The `colcon-wasm` command.
 
 Each subcommand is one thin module registered as an entry point in the group
 `colcon_wasm.cli` (like pyodide-build's `pyodide.cli`); the work is done in
-library modules.
+library modules. A :class:`colcon_wasm.error.ColconWasmError` a subcommand
+raises becomes one line (`colcon-wasm SUBCOMMAND: what failed, where, what
+to do`) and exit code 1 (:func:`colcon_wasm.error.exit_on_error`).
 """
 
 import argparse
@@ -15,6 +17,7 @@ import sys
 from colcon_core.plugin_system import instantiate_extensions
 from colcon_core.plugin_system import order_extensions_by_name
 from colcon_wasm import __version__
+from colcon_wasm.error import exit_on_error
 
 
 class CliExtensionPoint:
@@ -40,7 +43,9 @@ class CliExtensionPoint:
         """
         Run the subcommand.
 
-        This method must be overridden in a subclass.
+        This method must be overridden in a subclass. It may raise a
+        :class:`colcon_wasm.error.ColconWasmError`: :func:`main` prints it as
+        one line and exits with 1.
 
         :param args: the parsed arguments
         :returns: the exit code
@@ -79,7 +84,9 @@ def main(argv=None):
     if not args.subcommand:
         parser.print_help()
         return 2
-    return subcommands[args.subcommand].main(args=args)
+    # the one edge: an error of the library becomes one line and exit code 1
+    with exit_on_error(f'colcon-wasm {args.subcommand}'):
+        return subcommands[args.subcommand].main(args=args)
 
 
 if __name__ == '__main__':

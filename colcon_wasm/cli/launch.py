@@ -78,7 +78,7 @@ class LaunchCommand(CliExtensionPoint):
             bridges.update(foxglove_plan(args, err=sys.stderr))
             bags = bag_plan(args)
         except (LaunchError, InstallSpaceError) as e:
-            print('colcon-wasm launch: {}'.format(e), file=sys.stderr)
+            print(f'colcon-wasm launch: {e}', file=sys.stderr)
             return 1
         return execute(plan, install_base=args.install_base, duration=args.duration,
                        echo=args.echo, print_plan=args.print_plan,

@@ -36,7 +36,7 @@ class PlayCommand(CliExtensionPoint):
             bridges = bridge_plan(args, err=sys.stderr)
             bags = bag_plan(args, play=args.bag, stop_after_play=not args.loop)
         except (LaunchError, InstallSpaceError) as e:
-            print('colcon-wasm play: {}'.format(e), file=sys.stderr)
+            print(f'colcon-wasm play: {e}', file=sys.stderr)
             return 1
         return execute(plan, install_base=args.install_base, duration=args.duration,
                        echo=args.echo, print_plan=args.print_plan, command='colcon-wasm play',

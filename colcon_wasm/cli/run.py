@@ -46,7 +46,7 @@ class RunCommand(CliExtensionPoint):
             bridges.update(foxglove_plan(args, err=sys.stderr))
             bags = bag_plan(args)
         except LaunchError as e:
-            print('colcon-wasm run: {}'.format(e), file=sys.stderr)
+            print(f'colcon-wasm run: {e}', file=sys.stderr)
             return 1
         return execute(plan, install_base=args.install_base, duration=args.duration,
                        echo=args.echo, print_plan=args.print_plan, command='colcon-wasm run',

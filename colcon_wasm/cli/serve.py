@@ -9,13 +9,10 @@ import threading
 
 from colcon_wasm import resources
 from colcon_wasm.cli import CliExtensionPoint
-from colcon_wasm.launch.errors import LaunchError
 from colcon_wasm.launch.install_space import InstallSpace
-from colcon_wasm.launch.install_space import InstallSpaceError
 from colcon_wasm.launch.rosbridge import parse_listen_address
 from colcon_wasm.server import find_runtime
 from colcon_wasm.server import make_server
-from colcon_wasm.server import ServeError
 
 
 def _is_loopback(host):
@@ -57,30 +54,26 @@ class ServeCommand(CliExtensionPoint):
             help='Bytes waiting for one rosbridge client before it is cut off (default 64 MiB)')
 
     def main(self, *, args):  # noqa: D102
-        try:
-            install_space = InstallSpace(args.install_base)
-            bundled = resources.path('packages') / 'wasm_js' / 'src'
-            runtime_dir, runtime_origin = find_runtime(install_space, bundled)
-            server = make_server(
-                install_space, host=args.host, port=args.port,
-                launcher_dir=resources.path('templates') / 'launcher',
-                runtime_dir=runtime_dir, runtime_origin=runtime_origin,
-                page_modules_dir=bundled)
-            relay_server = _relay(args, install_space, server) if args.rosbridge else None
-        except (InstallSpaceError, ServeError, LaunchError) as e:
-            print('colcon-wasm serve: {}'.format(e), file=sys.stderr)
-            return 1
+        install_space = InstallSpace(args.install_base)
+        bundled = resources.path('packages') / 'wasm_js' / 'src'
+        runtime_dir, runtime_origin = find_runtime(install_space, bundled)
+        server = make_server(
+            install_space, host=args.host, port=args.port,
+            launcher_dir=resources.path('templates') / 'launcher',
+            runtime_dir=runtime_dir, runtime_origin=runtime_origin,
+            page_modules_dir=bundled)
+        relay_server = _relay(args, install_space, server) if args.rosbridge else None
         if not _is_loopback(args.host):
-            print('colcon-wasm serve: warning: listening on {}: other machines can open the '
-                  'page, run your nodes and read the files of the install space'.format(
-                      args.host), file=sys.stderr)
+            print(f'colcon-wasm serve: warning: listening on {args.host}: other machines can '
+                  'open the page, run your nodes and read the files of the install space',
+                  file=sys.stderr)
         executables = install_space.executables()
-        print('Serving {} executable(s) of {}'.format(len(executables), install_space.base))
-        print('Runtime: {}'.format(runtime_origin))
+        print(f'Serving {len(executables)} executable(s) of {install_space.base}')
+        print(f'Runtime: {runtime_origin}')
         if relay_server is not None:
             threading.Thread(target=relay_server.serve_forever, daemon=True).start()
-            print('rosbridge relay: {} (and /rosbridge for the pages)'.format(relay_server.url))
-        print('Open {}  (Ctrl-C stops the server)'.format(server.url), flush=True)
+            print(f'rosbridge relay: {relay_server.url} (and /rosbridge for the pages)')
+        print(f'Open {server.url}  (Ctrl-C stops the server)', flush=True)
         try:
             server.serve_forever()
         except KeyboardInterrupt:
@@ -111,6 +104,6 @@ def _relay(args, install_space, server):
     server.relay = relay
     server.site.relay_path = '/rosbridge'
     if not _is_loopback(host):
-        print('colcon-wasm serve: warning: the rosbridge relay listens on {}: other machines can '
-              "drive the pages' nodes".format(host), file=sys.stderr)
+        print(f'colcon-wasm serve: warning: the rosbridge relay listens on {host}: other '
+              "machines can drive the pages' nodes", file=sys.stderr)
     return relay_server

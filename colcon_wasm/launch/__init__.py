@@ -10,9 +10,9 @@ composable nodes to load into containers (``composable``).
 """
 
 from colcon_wasm.launch.errors import LaunchError
+from colcon_wasm.launch.launch_plan import LaunchPlan
+from colcon_wasm.launch.launch_plan import NodeProcess
 from colcon_wasm.launch.loader import load_launch_file
-from colcon_wasm.launch.plan import LaunchPlan
-from colcon_wasm.launch.plan import NodeProcess
 
 __all__ = ['LaunchError', 'LaunchPlan', 'NodeProcess', 'load_launch_file', 'plan_items',
            'split_launch_arguments']
@@ -31,7 +31,7 @@ def split_launch_arguments(values):
         name, separator, text = value.partition(':=')
         if separator and '/' not in name:
             if not name:
-                raise LaunchError("launch argument {!r} has no name before ':='".format(value))
+                raise LaunchError(f"launch argument {value!r} has no name before ':='")
             arguments[name] = text
         else:
             others.append(value)
@@ -49,7 +49,6 @@ def plan_items(items):
         package, separator, executable = item.partition('/')
         if not separator or not package or not executable or '/' in executable:
             raise LaunchError(
-                "'{}' is neither a launch file nor a PKG/EXE item (e.g. demo_nodes/talker)"
-                .format(item))
+                f"'{item}' is neither a launch file nor a PKG/EXE item (e.g. demo_nodes/talker)")
         processes.append(NodeProcess(package, executable))
     return LaunchPlan(processes)

@@ -37,18 +37,19 @@ def make_plan(values, install_base):
     first = Path(others[0])
     if len(others) == 1 and (first.is_file() or first.name.endswith(LAUNCH_FILE_SUFFIXES)):
         if not first.is_file():
-            raise LaunchError("launch file '{}' does not exist".format(first))
+            raise LaunchError(f"launch file '{first}' does not exist")
         return load_launch_file(first, arguments, install_space=install_space)
     if len(others) == 2 and '/' not in others[0] and \
             others[1].endswith(LAUNCH_FILE_SUFFIXES):
         if install_space is None:
-            raise LaunchError("no install space at '{}': run 'colcon build --wasm' first, or "
-                              'pass --install-base DIR'.format(install_base))
+            raise LaunchError(f"no install space at '{install_base}': run 'colcon build --wasm' "
+                              'first, or '
+                              'pass --install-base DIR')
         path = find_launch_file(install_space, others[0], others[1])
         return load_launch_file(path, arguments, install_space=install_space)
     if arguments:
-        raise LaunchError('launch arguments ({}) need a launch file'.format(
-            ', '.join('{}:={}'.format(k, v) for k, v in arguments.items())))
+        given = ', '.join(f'{k}:={v}' for k, v in arguments.items())
+        raise LaunchError(f'launch arguments ({given}) need a launch file')
     return plan_items(others)
 
 
@@ -93,15 +94,15 @@ def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, com
         if python:
             _add_python_nodes(description, python, install_space, bases, pyodide, print_plan)
     except (LaunchError, InstallSpaceError) as e:
-        print('{}: {}'.format(command, e), file=err)
+        print(f'{command}: {e}', file=err)
         return 1
     if print_plan:
         for process in description['processes']:
-            print('[{}] {} {}'.format(process['label'], process['js'],
-                                      ' '.join(process['args'])).rstrip(), file=out)
+            args = ' '.join(process['args'])
+            print(f"[{process['label']}] {process['js']} {args}".rstrip(), file=out)
         for load in plan.loads:
             for node in load.nodes:
-                print('[load_node {}] {}'.format(load.container_name, node.describe()),
+                print(f'[load_node {load.container_name}] {node.describe()}',
                       file=out)
         return 0
     from colcon_wasm import resources
@@ -121,5 +122,5 @@ def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, com
                               pass_fds=session.fds, started=session.host_started)
             return session.finish(status)
     except (LaunchError, ServeError) as e:
-        print('{}: {}'.format(command, e), file=err)
+        print(f'{command}: {e}', file=err)
         return 1

@@ -16,7 +16,7 @@ calls; any container that serves the service works.
 import math
 
 from colcon_wasm.launch.errors import LaunchError
-from colcon_wasm.launch.plan import yaml_value
+from colcon_wasm.launch.launch_plan import yaml_value
 import yaml
 
 LOAD_NODE_TYPE = 'composition_interfaces/srv/LoadNode'
@@ -39,8 +39,7 @@ def _json_double(value):
 
 def _json_integer(name, value, where):
     if not _INT64[0] <= value <= _INT64[1]:
-        raise LaunchError("parameter '{}': {} does not fit a 64-bit integer".format(
-            name, value), *where)
+        raise LaunchError(f"parameter '{name}': {value} does not fit a 64-bit integer", *where)
     return str(value)  # int64 as a decimal string: exact in JSON and in JS
 
 
@@ -56,7 +55,7 @@ def parameter_message(name, value, where):
     :raises LaunchError: for None, mappings, mixed lists, out-of-range ints
     """
     def fail(why):
-        return LaunchError("parameter '{}': {} ({})".format(name, why, _VALUE_HINT), *where)
+        return LaunchError(f"parameter '{name}': {why} ({_VALUE_HINT})", *where)
 
     if isinstance(value, bool):
         typed = {'type': _BOOL, 'bool_value': value}
@@ -80,12 +79,11 @@ def parameter_message(name, value, where):
         elif all(isinstance(v, str) for v in items):
             typed = {'type': _STRING_ARRAY, 'string_array_value': items}
         else:
-            raise fail('{!r} mixes types; write every item alike (e.g. 1.0 for a float)'.format(
-                items))
+            raise fail(f'{items!r} mixes types; write every item alike (e.g. 1.0 for a float)')
     elif value is None:
         raise fail('it has no value')
     else:
-        raise fail('{!r} is not a parameter value'.format(value))
+        raise fail(f'{value!r} is not a parameter value')
     return {'name': name, 'value': typed}
 
 
@@ -100,17 +98,16 @@ def extra_argument_value(text, name, where):
     try:
         value = yaml.safe_load(text) if text else ''
     except yaml.YAMLError:
-        raise LaunchError("extra argument '{}': {!r} is not valid YAML; quote a string "
-                          "(value=\"'text'\")".format(name, text), *where) from None
+        raise LaunchError(f"extra argument '{name}': {text!r} is not valid YAML; quote a string "
+                          "(value=\"'text'\")", *where) from None
     if isinstance(value, list):
         if not value or type(value[0]) not in (bool, int, float, str) or not all(
                 isinstance(v, type(value[0])) for v in value):
             raise LaunchError(
-                "extra argument '{}': {!r} is not a non-empty list of items of one type "
-                '(bool, int, float or str)'.format(name, value), *where)
+                f"extra argument '{name}': {value!r} is not a non-empty list of items of one type "
+                '(bool, int, float or str)', *where)
     elif not isinstance(value, (bool, int, float, str)):
-        raise LaunchError("extra argument '{}': {!r} is not {}".format(
-            name, text, _VALUE_HINT), *where)
+        raise LaunchError(f"extra argument '{name}': {text!r} is not {_VALUE_HINT}", *where)
     return value
 
 
@@ -126,14 +123,14 @@ def _file_value(name, value, path, where):
     if kinds in ({bool}, {str}):
         return value
     raise LaunchError(
-        "parameter '{}' in {}: {!r} is not a non-empty list of items of one type "
-        '(ints and floats together become floats)'.format(name, path, value), *where)
+        f"parameter '{name}' in {path}: {value!r} is not a non-empty list of items of one type "
+        '(ints and floats together become floats)', *where)
 
 
 def _flatten(prefix, value, out):
     if isinstance(value, dict):
         for key, item in value.items():
-            _flatten('{}{}.'.format(prefix, key), item, out)
+            _flatten(f'{prefix}{key}.', item, out)
     else:
         out.append((prefix[:-1], value))
 
@@ -163,21 +160,21 @@ def file_parameters(path, node_name, namespace, where):
         with open(path, 'r', encoding='utf-8') as f:
             document = yaml.safe_load(f)
     except OSError as e:
-        raise LaunchError('cannot read the parameters file {}: {}'.format(path, e.strerror),
+        raise LaunchError(f'cannot read the parameters file {path}: {e.strerror}',
                           *where) from None
     except yaml.YAMLError as e:
-        raise LaunchError('the parameters file {} is not valid YAML: {}'.format(path, e),
+        raise LaunchError(f'the parameters file {path} is not valid YAML: {e}',
                           *where) from None
     sections = {}
     if isinstance(document, dict):
         _node_sections(document, [], sections)
     if not sections:
-        raise LaunchError('the parameters file {} has no node section with '
-                          "'ros__parameters' (e.g. /**: {{ros__parameters: {{rate: 5}}}})"
-                          .format(path), *where)
+        raise LaunchError(f'the parameters file {path} has no node section with '
+                          "'ros__parameters' (e.g. /**: {ros__parameters: {rate: 5}})",
+                          *where)
     key = node_name
     if namespace and namespace != '/':
-        key = '{}/{}'.format(namespace.strip('/'), node_name)
+        key = f"{namespace.strip('/')}/{node_name}"
     merged = dict(sections.get('**') or {})
     merged.update(sections.get(key) or {})
     flat = []
@@ -218,7 +215,7 @@ class ComposableNode:
             'node_name': self.name,
             'node_namespace': self.namespace or '',
             'log_level': 0,  # launch_ros (Humble) leaves it unset
-            'remap_rules': ['{}:={}'.format(s, t) for s, t in self.remappings],
+            'remap_rules': [f'{s}:={t}' for s, t in self.remappings],
             'parameters': self.parameters,
             'extra_arguments': self.extra_arguments,
         }
@@ -227,14 +224,14 @@ class ComposableNode:
         """Return the node as the arguments a ComponentManager gives it, for --print-plan."""
         words = [self.package, self.plugin, '--ros-args']
         for source, target in self.remappings:
-            words += ['-r', '{}:={}'.format(source, target)]
-        words += ['-r', '__node:={}'.format(self.name)]
+            words += ['-r', f'{source}:={target}']
+        words += ['-r', f'__node:={self.name}']
         if self.namespace:
-            words += ['-r', '__ns:={}'.format(self.namespace)]
+            words += ['-r', f'__ns:={self.namespace}']
         for name, value in self._values:
-            words += ['-p', '{}:={}'.format(name, yaml_value(value))]
+            words += ['-p', f'{name}:={yaml_value(value)}']
         for name, value in self._extra_values:
-            words += ['-e', '{}:={}'.format(name, yaml_value(value))]
+            words += ['-e', f'{name}:={yaml_value(value)}']
         return ' '.join(words)
 
 
@@ -253,8 +250,7 @@ class LoadComposableNodes:
         :param kind: the tag, for messages
         """
         self.target = target
-        self.service = '{}/_container/load_node'.format(
-            target if target.startswith('/') else '/' + target)
+        self.service = f"{target if target.startswith('/') else '/' + target}/_container/load_node"
         self.nodes = list(nodes)
         self.containers = list(containers)
         self.kind = kind
@@ -273,6 +269,6 @@ class LoadComposableNodes:
             'service': self.service,
             'type': LOAD_NODE_TYPE,
             'containers': [p.label for p in self.containers],
-            'where': '<{}> at {}:{}'.format(self.kind, file, line) if file is not None else None,
+            'where': f'<{self.kind}> at {file}:{line}' if file is not None else None,
             'requests': [node.request() for node in self.nodes],
         }

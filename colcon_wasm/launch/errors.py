@@ -3,8 +3,10 @@
 
 """The one error type of launch-file loading."""
 
+from colcon_wasm.error import ColconWasmError
 
-class LaunchError(Exception):
+
+class LaunchError(ColconWasmError):
     """A launch file or item that cannot be run; names the file and line."""
 
     def __init__(self, message, path=None, line=None):
@@ -13,5 +15,5 @@ class LaunchError(Exception):
         self.line = line
         location = ''
         if path is not None:
-            location = '{}{}: '.format(path, ':{}'.format(line) if line else '')
+            location = f"{path}{(f':{line}' if line else '')}: "
         super().__init__(location + message)

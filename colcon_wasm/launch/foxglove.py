@@ -30,16 +30,15 @@ DEFAULT_QUEUE_MESSAGES = 10
 def add_foxglove_arguments(parser):
     """Add the Foxglove options."""
     parser.add_argument(
-        '--foxglove', nargs='?', const='{}:{}'.format(DEFAULT_HOST, DEFAULT_PORT),
+        '--foxglove', nargs='?', const=f'{DEFAULT_HOST}:{DEFAULT_PORT}',
         metavar='[HOST:]PORT',
-        help="Serve the Foxglove WebSocket protocol (Foxglove, Lichtblick) over the nodes' "
-             'bus on HOST:PORT (default {}:{}; only this machine unless HOST names another '
-             'address; port 0 picks a free one)'.format(DEFAULT_HOST, DEFAULT_PORT))
+        help="Serve the Foxglove WebSocket protocol (Foxglove, Lichtblick) over the nodes' bus "
+             f'on HOST:PORT (default {DEFAULT_HOST}:{DEFAULT_PORT}; only this machine unless '
+             'HOST names another address; port 0 picks a free one)')
     parser.add_argument(
         '--foxglove-queue', type=_positive_int, metavar='N',
         help='Messages of one topic waiting for a slow Foxglove client before the oldest is '
-             'dropped (default {}; each topic has its own queue)'.format(
-                 DEFAULT_QUEUE_MESSAGES))
+             f'dropped (default {DEFAULT_QUEUE_MESSAGES}; each topic has its own queue)')
 
 
 def foxglove_plan(args, *, err=None):
@@ -56,8 +55,8 @@ def foxglove_plan(args, *, err=None):
         return {}
     host, port = parse_listen_address(args.foxglove, '--foxglove', DEFAULT_PORT)
     if not is_loopback(host) and err is not None:
-        print('warning: --foxglove listens on {}: other machines can see and drive your '
-              'nodes (the Foxglove protocol has no authentication)'.format(host), file=err)
+        print(f'warning: --foxglove listens on {host}: other machines can see and '
+              'drive your nodes (the Foxglove protocol has no authentication)', file=err)
     return {'foxglove': {
         'host': host, 'port': port,
         'queueMessages': getattr(args, 'foxglove_queue', None) or DEFAULT_QUEUE_MESSAGES,

@@ -55,7 +55,7 @@ class Entity:
             return self.attributes[name][0]
         if not optional:
             raise LaunchError(
-                "<{}> needs the attribute '{}'".format(self.kind, name), *self.where)
+                f"<{self.kind}> needs the attribute '{name}'", *self.where)
         return None
 
     def get_list(self, name):
@@ -75,14 +75,16 @@ class Entity:
         if not unread and self.children_list and 'children' not in self._read:
             child = self.children_list[0]
             raise LaunchError(
-                'unexpected tag <{}> inside <{}>: it is misspelled or not supported by '
-                'colcon-wasm launch'.format(child.kind, self.kind), *child.where)
+                f'unexpected tag <{child.kind}> inside <{self.kind}>: it is misspelled or not '
+                'supported by '
+                'colcon-wasm launch', *child.where)
         if unread:
             name = unread[0]
             kind = 'tag' if name in self.lists else 'attribute'
             raise LaunchError(
-                "unexpected {} '{}' in <{}>: it is misspelled or not supported by "
-                'colcon-wasm launch'.format(kind, name, self.kind), *self.where_of(name))
+                f"unexpected {kind} '{name}' in <{self.kind}>: it is misspelled or not supported "
+                'by '
+                'colcon-wasm launch', *self.where_of(name))
 
 
 # --------------------------------------------------------------------- XML
@@ -130,13 +132,13 @@ def read_xml(path):
         with open(path, 'rb') as f:
             parser.ParseFile(f)
     except expat.ExpatError as e:
-        raise LaunchError('not valid XML: {}'.format(expat.ErrorString(e.code)),
+        raise LaunchError(f'not valid XML: {expat.ErrorString(e.code)}',
                           path, e.lineno) from None
     except OSError as e:
-        raise LaunchError('cannot read the launch file: {}'.format(e.strerror), path) from None
+        raise LaunchError(f'cannot read the launch file: {e.strerror}', path) from None
     entity = root[0]
     if entity.kind != 'launch':
-        raise LaunchError('the root tag is <{}>, expected <launch>'.format(entity.kind),
+        raise LaunchError(f'the root tag is <{entity.kind}>, expected <launch>',
                           *entity.where)
     return entity
 
@@ -150,7 +152,7 @@ def _yaml_entity(kind, node, loader, path):
                       children=[_yaml_single_key(item, loader, path) for item in node.value])
     if not isinstance(node, yaml.MappingNode):
         raise LaunchError(
-            "'{}' must be a mapping of attributes or a list of entities".format(kind),
+            f"'{kind}' must be a mapping of attributes or a list of entities",
             path, line)
     entity = Entity(kind, source=path, line=line)
     for key_node, value_node in node.value:
@@ -185,7 +187,7 @@ def read_yaml(path):
         with open(path, 'r', encoding='utf-8') as f:
             text = f.read()
     except OSError as e:
-        raise LaunchError('cannot read the launch file: {}'.format(e.strerror), path) from None
+        raise LaunchError(f'cannot read the launch file: {e.strerror}', path) from None
     loader = yaml.SafeLoader(text)
     try:
         node = loader.get_single_node()
@@ -197,6 +199,6 @@ def read_yaml(path):
         return _yaml_entity('launch', node.value[0][1], loader, path)
     except yaml.MarkedYAMLError as e:
         line = e.problem_mark.line + 1 if e.problem_mark else None
-        raise LaunchError('not valid YAML: {}'.format(e.problem), path, line) from None
+        raise LaunchError(f'not valid YAML: {e.problem}', path, line) from None
     finally:
         loader.dispose()

@@ -17,6 +17,8 @@ import json
 import os
 from pathlib import Path
 
+from colcon_wasm.error import ColconWasmError
+
 MANIFEST_SCHEMA = 1
 
 """The marker of an install base built with ``colcon build --wasm``."""
@@ -59,7 +61,7 @@ def _scan_base(base):
     return found
 
 
-class InstallSpaceError(Exception):
+class InstallSpaceError(ColconWasmError):
     """An install space, package or executable that is not there or is broken."""
 
 
@@ -83,7 +85,7 @@ class Executable:
     @property
     def label(self):
         """Return ``pkg/exe``."""
-        return '{}/{}'.format(self.package_name, self.name)
+        return f'{self.package_name}/{self.name}'
 
 
 class Package:
@@ -106,13 +108,14 @@ class Package:
                 data = json.loads(self.manifest_path.read_text(encoding='utf-8'))
             except (OSError, ValueError) as e:
                 raise InstallSpaceError(
-                    "cannot read the manifest '{}': {}; rebuild '{}' with "
-                    'colcon build --wasm'.format(self.manifest_path, e, self.name)) from e
+                    f"cannot read the manifest '{self.manifest_path}': {e}; rebuild '{self.name}' "
+                    'with '
+                    'colcon build --wasm') from e
             if data.get('schema') != MANIFEST_SCHEMA:
                 raise InstallSpaceError(
-                    "manifest '{}' has schema {!r}, this colcon-wasm reads schema {}; "
-                    "rebuild '{}' with this colcon-wasm".format(
-                        self.manifest_path, data.get('schema'), MANIFEST_SCHEMA, self.name))
+                    f"manifest '{self.manifest_path}' has schema {data.get('schema')!r}, this "
+                    f'colcon-wasm reads schema {MANIFEST_SCHEMA}; '
+                    f"rebuild '{self.name}' with this colcon-wasm")
             self._manifest = data
         return self._manifest
 
@@ -142,8 +145,8 @@ class InstallSpace:
         self.base = Path(base).absolute()
         if not self.base.is_dir():
             raise InstallSpaceError(
-                "no install space at '{}': run 'colcon build --wasm' in the workspace "
-                'first, or pass --install-base DIR'.format(base))
+                f"no install space at '{base}': run 'colcon build --wasm' in the workspace "
+                'first, or pass --install-base DIR')
         if underlays is None:
             underlays = _default_underlays(self.base, os.environ if environ is None else environ)
         self.bases = [self.base]
@@ -169,15 +172,14 @@ class InstallSpace:
         packages = self.packages()
         if name in packages:
             return packages[name]
-        where = "the install space '{}'".format(self.base)
+        where = f"the install space '{self.base}'"
         if self.underlays:
             where += ' nor its underlays ' + ', '.join(
-                "'{}'".format(u) for u in self.underlays)
+                f"'{u}'" for u in self.underlays)
         raise InstallSpaceError(
-            "package '{}' is not in {} ({}: {}); build it with "
-            "'colcon build --wasm --packages-up-to {}'".format(
-                name, where, 'they have' if self.underlays else 'it has',
-                ', '.join(packages) or 'no packages', name))
+            f"package '{name}' is not in {where} ({'they have' if self.underlays else 'it has'}: "
+            f"{', '.join(packages) or 'no packages'}); build it with "
+            f"'colcon build --wasm --packages-up-to {name}'")
 
     def executable(self, package_name, name):
         """Return the Executable ``package_name/name`` or raise a clear error."""
@@ -186,19 +188,20 @@ class InstallSpace:
         if executable is not None:
             if not executable.js.is_file():
                 raise InstallSpaceError(
-                    "the manifest of '{}' lists '{}', but '{}' is missing; rebuild "
-                    'the package'.format(executable.package.name, name, executable.js))
+                    f"the manifest of '{executable.package.name}' lists '{name}', but "
+                    f"'{executable.js}' is missing; rebuild "
+                    'the package')
             return executable
         package = self.package(package_name)
         if package.manifest is None and not any(p == package_name for p, _ in found):
             raise InstallSpaceError(
-                "package '{}' in '{}' has no colcon-wasm manifest ('{}'): it was not built "
-                "with 'colcon build --wasm', or it installs no executables".format(
-                    package_name, package.prefix, package.manifest_path))
+                f"package '{package_name}' in '{package.prefix}' has no colcon-wasm manifest "
+                f"('{package.manifest_path}'): it was not built "
+                "with 'colcon build --wasm', or it installs no executables")
         names = [n for p, n in found if p == package_name]
         raise InstallSpaceError(
-            "package '{}' has no executable '{}' (it has: {})".format(
-                package_name, name, ', '.join(names) or 'none'))
+            f"package '{package_name}' has no executable '{name}' (it has: "
+            f"{', '.join(names) or 'none'})")
 
     def executables(self, skip=None):
         """

@@ -24,11 +24,11 @@ from colcon_wasm.launch.composable import LoadComposableNodes
 from colcon_wasm.launch.errors import LaunchError
 from colcon_wasm.launch.frontends import read_xml
 from colcon_wasm.launch.frontends import read_yaml
-from colcon_wasm.launch.plan import absolute_namespace
-from colcon_wasm.launch.plan import LaunchPlan
-from colcon_wasm.launch.plan import NodeProcess
-from colcon_wasm.launch.plan import validate_node_name
-from colcon_wasm.launch.plan import yaml_value
+from colcon_wasm.launch.launch_plan import absolute_namespace
+from colcon_wasm.launch.launch_plan import LaunchPlan
+from colcon_wasm.launch.launch_plan import NodeProcess
+from colcon_wasm.launch.launch_plan import validate_node_name
+from colcon_wasm.launch.launch_plan import yaml_value
 from colcon_wasm.launch.substitutions import condition
 from colcon_wasm.launch.substitutions import Context
 from colcon_wasm.launch.substitutions import evaluate
@@ -71,7 +71,7 @@ class Loader:
     def _find_package(self, name, where):
         if self.install_space is None:
             raise LaunchError(
-                '$(find-pkg-share {}) needs an install space (--install-base)'.format(name),
+                f'$(find-pkg-share {name}) needs an install space (--install-base)',
                 *where)
         try:
             return self.install_space.find_package_prefix(name)
@@ -120,9 +120,10 @@ class Loader:
             }.get(entity.kind)
             if handler is None:
                 raise LaunchError(
-                    '<{}> is not supported by colcon-wasm launch (supported: arg, let, node, '
+                    f'<{entity.kind}> is not supported by colcon-wasm launch (supported: arg, '
+                    'let, node, '
                     'group, push-ros-namespace, include, node_container, '
-                    'load_composable_node)'.format(entity.kind), *entity.where)
+                    'load_composable_node)', *entity.where)
             handler(entity, context)
 
     def _condition(self, entity, context):
@@ -153,14 +154,14 @@ class Loader:
         if name not in context.configurations:
             if default is None:
                 raise LaunchError(
-                    "launch argument '{}' is required: pass {}:=VALUE".format(name, name),
+                    f"launch argument '{name}' is required: pass {name}:=VALUE",
                     *entity.where)
             context.configurations[name] = default
         value = context.configurations[name]
         if choices and value not in choices:
             raise LaunchError(
-                "launch argument '{}' is {!r}, but must be one of: {}".format(
-                    name, value, ', '.join(choices)), *entity.where)
+                f"launch argument '{name}' is {value!r}, but must be one of: "
+                f"{', '.join(choices)}", *entity.where)
 
     def _let(self, entity, context):
         name = self._text(entity, 'name', context, optional=False)
@@ -191,7 +192,7 @@ class Loader:
         if not path.is_absolute() and context.launch_file is not None:
             path = Path(context.launch_file).parent / path
         if not path.is_file():
-            raise LaunchError('included launch file {} does not exist'.format(path),
+            raise LaunchError(f'included launch file {path} does not exist',
                               *entity.where_of('file'))
         inner = context.child(launch_file=path)
         inner.configurations = dict(context.configurations)
@@ -214,8 +215,8 @@ class Loader:
         for key in ('respawn', 'launch-prefix', 'launch_prefix', 'cwd'):
             if entity.get(key) is not None:
                 raise LaunchError(
-                    "the <{}> attribute '{}' is not supported by colcon-wasm launch".format(
-                        entity.kind, key), *entity.where_of(key))
+                    f"the <{entity.kind}> attribute '{key}' is not supported by colcon-wasm "
+                    'launch', *entity.where_of(key))
         remappings = []
         for remap in entity.get_list('remap'):
             remappings.append((self._text(remap, 'from', context, optional=False),
@@ -244,9 +245,9 @@ class Loader:
         for key in ('name', 'namespace'):
             if entity.get(key) is None:
                 raise LaunchError(
-                    "<node_container> needs the attribute '{}': the container's full name "
+                    f"<node_container> needs the attribute '{key}': the container's full name "
                     '(namespace + name) is where its composable nodes are loaded; write '
-                    'namespace="" for the root namespace'.format(key), *entity.where)
+                    'namespace="" for the root namespace', *entity.where)
         children = entity.get_list('composable_node')
         process = self._node(entity, context)
         nodes = [self._composable_node(child, context) for child in children
@@ -267,7 +268,7 @@ class Loader:
                 'name) to load', *entity.where)
         namespace, _, name = target.strip('/').rpartition('/')
         validate_node_name(name, '/' + namespace, entity.where_of('target'),
-                           what='target {!r}: the container'.format(target))
+                           what=f'target {target!r}: the container')
         nodes = [self._composable_node(child, context) for child in children
                  if self._condition(child, context)]
         if nodes:
@@ -302,8 +303,9 @@ class Loader:
             where = argument.where_of('value')
             if not isinstance(value, str):
                 raise LaunchError(
-                    "<extra_arg name='{}'>: write the value as a string (value: '{}'), as "
-                    'ros2 launch reads it'.format(arg_name, yaml_value(value)), *where)
+                    f"<extra_arg name='{arg_name}'>: write the value as a string (value: "
+                    f"'{yaml_value(value)}'), as "
+                    'ros2 launch reads it', *where)
             extra_arguments.append(
                 (arg_name, extra_argument_value(substitute(value, context, where), arg_name,
                                                 where), where))
@@ -323,7 +325,7 @@ class Loader:
         try:
             return shlex.split(substitute(value, context, where))
         except ValueError as e:
-            raise LaunchError("cannot split '{}': {}".format(key, e), *where) from None
+            raise LaunchError(f"cannot split '{key}': {e}", *where) from None
 
     def _parameters(self, param, context, node_name, prefix):
         """Return ``[(name, yaml_text, node_or_None)]`` of one <param>."""
@@ -359,15 +361,15 @@ class Loader:
         value_type = param.get('type')
         param.check_complete()
         if value is not None and nested:
-            raise LaunchError("<param name='{}'> has both a value and nested <param>s".format(
-                full), *where)
+            raise LaunchError(f"<param name='{full}'> has both a value and nested "
+                              '<param>s', *where)
         if nested:
             result = []
             for child in nested:
                 result += self._parameter_items(child, context, full + '.')
             return result
         if value is None:
-            raise LaunchError("<param name='{}'> needs a 'value'".format(full), *where)
+            raise LaunchError(f"<param name='{full}'> needs a 'value'", *where)
         typed = parameter_value(value, value_type, separator, context,
                                 param.where_of('value'), full,
                                 typed_text=param.frontend == 'xml')
@@ -441,9 +443,9 @@ def parameter_value(value, value_type, separator, context, where, name, *, typed
         base = value_type[len('list_of_'):] if value_type.startswith('list_of_') else value_type
         if base not in _TYPES:
             raise LaunchError(
-                "parameter '{}': type '{}' is not one of str, int, float, bool, yaml, "
-                'list_of_str, list_of_int, list_of_float, list_of_bool'.format(
-                    name, value_type), *where)
+                f"parameter '{name}': type '{value_type}' is not one of str, int, float, bool, "
+                'yaml, '
+                'list_of_str, list_of_int, list_of_float, list_of_bool', *where)
         is_list = value_type.startswith('list_of_')
         scalar_type = _TYPES[base]
     if separator is not None and isinstance(value, str):
@@ -467,8 +469,7 @@ def parameter_value(value, value_type, separator, context, where, name, *, typed
         if scalar_type is float and isinstance(result, int) and not isinstance(result, bool):
             result, ok = float(result), True
     if not ok:
-        raise LaunchError("parameter '{}': {!r} is not a {}".format(
-            name, value, value_type), *where)
+        raise LaunchError(f"parameter '{name}': {value!r} is not a {value_type}", *where)
     return result
 
 
@@ -476,7 +477,7 @@ def _flatten(prefix, value, out):
     """Append ``(dotted.name, yaml_text)`` for each leaf of a parameter tree."""
     if isinstance(value, dict):
         for key, item in value.items():
-            _flatten('{}{}.'.format(prefix, key), item, out)
+            _flatten(f'{prefix}{key}.', item, out)
     else:
         out.append((prefix[:-1], yaml_value(value)))
 
@@ -504,18 +505,18 @@ def parameters_from_file(path, node_name, where):
         with open(path, 'r', encoding='utf-8') as f:
             document = yaml.safe_load(f)
     except OSError as e:
-        raise LaunchError('cannot read the parameters file {}: {}'.format(path, e.strerror),
+        raise LaunchError(f'cannot read the parameters file {path}: {e.strerror}',
                           *where) from None
     except yaml.YAMLError as e:
-        raise LaunchError('the parameters file {} is not valid YAML: {}'.format(path, e),
+        raise LaunchError(f'the parameters file {path} is not valid YAML: {e}',
                           *where) from None
     sections = []
     if isinstance(document, dict):
         _sections(document, [], sections)
     if not sections:
-        raise LaunchError('the parameters file {} has no node section with '
-                          "'ros__parameters' (e.g. talker: {{ros__parameters: {{rate: 5}}}})"
-                          .format(path), *where)
+        raise LaunchError(f'the parameters file {path} has no node section with '
+                          "'ros__parameters' (e.g. talker: {ros__parameters: {rate: 5}})",
+                          *where)
     result = []
     for node_path, parameters in sections:
         last = node_path[-1].strip('/')

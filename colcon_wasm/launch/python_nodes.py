@@ -53,22 +53,22 @@ def find_pyodide(option=None):
         candidates = [(Path(option), '--pyodide')]
     elif os.environ.get(PYODIDE_ENVIRONMENT_VARIABLE):
         candidates = [(Path(os.environ[PYODIDE_ENVIRONMENT_VARIABLE]),
-                       '$' + PYODIDE_ENVIRONMENT_VARIABLE)]
+                       f'${PYODIDE_ENVIRONMENT_VARIABLE}')]
     else:
         candidates = [(default_pyodide_prefix() / 'node_modules' / 'pyodide', 'default')]
     folder, source = candidates[0]
     folder = folder.expanduser().resolve()
     missing = [f for f in PYODIDE_FILES if not (folder / f).is_file()]
     if missing:
-        raise LaunchError("Python nodes need Pyodide {}, and '{}' ({}) lacks {}: {}".format(
-            PYODIDE_VERSION, folder, source, ', '.join(missing), install_hint()))
+        raise LaunchError(f"Python nodes need Pyodide {PYODIDE_VERSION}, and '{folder}' "
+                          f"({source}) lacks {', '.join(missing)}: {install_hint()}")
     try:
         version = json.loads((folder / 'package.json').read_text(encoding='utf-8'))['version']
     except (OSError, ValueError, KeyError):
         version = 'unknown'
     if version != PYODIDE_VERSION:
-        raise LaunchError('Incorrect Pyodide version {} in {}. Need Pyodide version {}: {}'.format(
-            version, folder, PYODIDE_VERSION, install_hint()))
+        raise LaunchError(f'Incorrect Pyodide version {version} in {folder}. Need Pyodide '
+                          f'version {PYODIDE_VERSION}: {install_hint()}')
     return folder
 
 
@@ -84,9 +84,9 @@ def python_processes(files, prefixes, *, first_index):
     for index, file in enumerate(files, start=first_index):
         path = Path(file).resolve()
         if not path.is_file():
-            raise LaunchError("Python node '{}' does not exist".format(file))
+            raise LaunchError(f"Python node '{file}' does not exist")
         entries.append({
-            'label': '{}-{}'.format(path.stem, index),
+            'label': f'{path.stem}-{index}',
             'python': str(path),
             'js': str(path),
             'args': [],

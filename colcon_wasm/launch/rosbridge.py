@@ -33,11 +33,12 @@ def _positive_int(text):
 def add_rosbridge_arguments(parser):
     """Add the rosbridge options."""
     parser.add_argument(
-        '--rosbridge', nargs='?', const='{}:{}'.format(DEFAULT_HOST, DEFAULT_PORT),
+        '--rosbridge', nargs='?', const=f'{DEFAULT_HOST}:{DEFAULT_PORT}',
         metavar='[HOST:]PORT',
         help="Serve the rosbridge v2 protocol (roslibjs, roslibpy) over the nodes' bus on "
-             'HOST:PORT (default {}:{}; only this machine unless HOST names another address; '
-             'port 0 picks a free one)'.format(DEFAULT_HOST, DEFAULT_PORT))
+             f'HOST:PORT (default {DEFAULT_HOST}:{DEFAULT_PORT}; only this machine unless HOST '
+             'names another address; '
+             'port 0 picks a free one)')
     parser.add_argument(
         '--rosbridge-token', metavar='TOKEN',
         help='rosbridge clients must present TOKEN (ws://HOST:PORT/?token=TOKEN or an '
@@ -69,13 +70,14 @@ def parse_listen_address(text, option='--rosbridge', default_port=DEFAULT_PORT):
     """
     match = re.fullmatch(r'(?:\[([^\]]+)\]|([^:\[\]]*)):(\d+)|(\d+)', text.strip())
     if not match:
-        raise LaunchError("{0} '{1}' is not [HOST:]PORT (e.g. {2}, 127.0.0.1:{2}, "
-                          '0.0.0.0:{2}); to take the default, put {0} last among the '
-                          'options or write {0}=127.0.0.1:{2}'.format(option, text, default_port))
+        raise LaunchError(f"{option} '{text}' is not [HOST:]PORT (e.g. {default_port}, "
+                          f'127.0.0.1:{default_port}, 0.0.0.0:{default_port}); to take the '
+                          f'default, put {option} last among the options or write '
+                          f'{option}=127.0.0.1:{default_port}')
     host = match.group(1) or match.group(2) or DEFAULT_HOST
     port = int(match.group(3) or match.group(4))
     if port > 65535:
-        raise LaunchError('{} port {} is not a port (0 to 65535)'.format(option, port))
+        raise LaunchError(f'{option} port {port} is not a port (0 to 65535)')
     return host, port
 
 
@@ -99,21 +101,21 @@ def load_capabilities(path):
     try:
         data = yaml.safe_load(path.read_text(encoding='utf-8'))
     except OSError as e:
-        raise LaunchError("cannot read the capability list '{}': {}".format(
-            path, e.strerror or e)) from None
+        raise LaunchError(f"cannot read the capability list '{path}': {e.strerror or e}") from None
     except yaml.YAMLError as e:
-        raise LaunchError("the capability list '{}' is not YAML or JSON: {}".format(
-            path, e)) from None
+        raise LaunchError(f"the capability list '{path}' is not YAML or JSON: {e}") from None
     if not isinstance(data, dict):
-        raise LaunchError("the capability list '{}' must be a mapping of {} to lists of name "
-                          'patterns'.format(path, ', '.join(CAPABILITY_VERBS)))
+        raise LaunchError(f"the capability list '{path}' must be a mapping of "
+                          f"{', '.join(CAPABILITY_VERBS)} to lists of name "
+                          'patterns')
     for verb, patterns in data.items():
         if verb not in CAPABILITY_VERBS:
-            raise LaunchError("the capability list '{}' has an unknown key '{}': use {}".format(
-                path, verb, ', '.join(CAPABILITY_VERBS)))
+            raise LaunchError(f"the capability list '{path}' has an unknown key '{verb}': use "
+                              f"{', '.join(CAPABILITY_VERBS)}")
         if not isinstance(patterns, list) or not all(isinstance(p, str) for p in patterns):
-            raise LaunchError("the capability list '{}': '{}' must be a list of name patterns "
-                              "(strings like '/chatter' or '/camera/*')".format(path, verb))
+            raise LaunchError(f"the capability list '{path}': '{verb}' must be a list of name "
+                              'patterns '
+                              "(strings like '/chatter' or '/camera/*')")
     return data
 
 
@@ -141,16 +143,17 @@ def bridge_plan(args, *, err=None):
         }
         if not is_loopback(host) and err is not None:
             missing = '' if args.rosbridge_token else ' (no --rosbridge-token)'
-            print('warning: --rosbridge listens on {}: other machines can drive your '
-                  'nodes{}'.format(host, missing), file=err)
+            print(f'warning: --rosbridge listens on {host}: other machines can drive your '
+                  f'nodes{missing}', file=err)
     elif getattr(args, 'rosbridge_capabilities', None):
         raise LaunchError('--rosbridge-capabilities applies to a server: add --rosbridge')
     if getattr(args, 'rosbridge_connect', None):
         url = args.rosbridge_connect
         parts = urlsplit(url)
         if parts.scheme != 'ws' or not parts.hostname:
-            raise LaunchError("--rosbridge-connect '{}' is not a ws://HOST:PORT URL (wss:// is "
-                              'not supported in Node.js)'.format(url))
+            raise LaunchError(f"--rosbridge-connect '{url}' is not a ws://HOST:PORT URL (wss:// "
+                              'is '
+                              'not supported in Node.js)')
         plan['rosbridge_connect'] = {
             'url': url, 'token': args.rosbridge_token, 'limits': limits,
         }

@@ -53,11 +53,10 @@ def find_launch_file(install_space, package, file_name):
         raise LaunchError(str(e)) from None
     matches = sorted(p for p in share.rglob(file_name) if p.is_file())
     if not matches:
-        raise LaunchError("package '{}' has no launch file '{}' in {}".format(
-            package, file_name, share))
+        raise LaunchError(f"package '{package}' has no launch file '{file_name}' in {share}")
     if len(matches) > 1:
-        raise LaunchError("package '{}' has several launch files named '{}': {}".format(
-            package, file_name, ', '.join(str(m) for m in matches)))
+        raise LaunchError(f"package '{package}' has several launch files named '{file_name}': "
+                          f"{', '.join(str(m) for m in matches)}")
     return matches[0]
 
 
@@ -71,10 +70,11 @@ def _check_load_node_types(install_space, load):
         if not found:
             file, line = load.where
             raise LaunchError(
-                "loading composable nodes calls {} and needs the type descriptions of '{}', "
-                "which the install space '{}' lacks: build it with 'colcon build --wasm "
-                "--packages-up-to {}'".format(LOAD_NODE_TYPE, package, install_space.base,
-                                              package), file, line)
+                f'loading composable nodes calls {LOAD_NODE_TYPE} and needs the type descriptions '
+                f"of '{package}', "
+                f"which the install space '{install_space.base}' lacks: build it with 'colcon "
+                'build --wasm '
+                f"--packages-up-to {package}'", file, line)
 
 
 def host_plan(plan, install_space, *, duration=None, echo=(), stdin=False,
@@ -111,7 +111,7 @@ def host_plan(plan, install_space, *, duration=None, echo=(), stdin=False,
         processes.append(entry)
         # the components the link launcher linked into a container (its manifest)
         hosted[entry['label']] = [
-            '{}/{}'.format(c['package'], c['class'])
+            f"{c['package']}/{c['class']}"
             for c in executable.entry.get('linked', {}).get('components', [])]
     if plan.loads:
         _check_load_node_types(install_space, plan.loads[0])
@@ -147,7 +147,7 @@ def run_host(description, runtime_module, host_dir, *, node=None, stdout=None, s
     """
     script = Path(host_dir) / HOST_SCRIPT
     if not script.is_file():
-        raise LaunchError("'{}' is missing: reinstall colcon-wasm".format(script))
+        raise LaunchError(f"'{script}' is missing: reinstall colcon-wasm")
     description = dict(description, runtime=Path(runtime_module).as_uri())
     command = [node or find_node(), str(script), json.dumps(description)]
     main_thread = threading.current_thread() is threading.main_thread()

@@ -41,7 +41,7 @@ class _Parser:
         self.where = where
 
     def fail(self, message):
-        return LaunchError('{} in {!r}'.format(message, self.text), *self.where)
+        return LaunchError(f'{message} in {self.text!r}', *self.where)
 
     def peek(self, n=1):
         return self.text[self.pos:self.pos + n]
@@ -78,7 +78,7 @@ class _Parser:
             self.pos += 1
         name = self.text[name_start:self.pos]
         if not name:
-            raise self.fail('a substitution needs a name after "$(" at character {}'.format(start))
+            raise self.fail(f'a substitution needs a name after "$(" at character {start}')
         args = []
         while True:
             c = self.peek()
@@ -87,8 +87,8 @@ class _Parser:
                 return Substitution(name, args)
             if c != ' ':
                 raise self.fail(
-                    'substitution $({} ... is not closed with ")"'.format(name) if not c
-                    else 'unexpected {!r} in substitution $({} ...)'.format(c, name))
+                    f'substitution $({name} ... is not closed with ")"' if not c
+                    else f'unexpected {c!r} in substitution $({name} ...)')
             while self.peek() == ' ':
                 self.pos += 1
             if self.peek() == ')':
@@ -101,7 +101,7 @@ class _Parser:
             self.pos += 1
             parts = self.template(stop=c)
             if self.peek() != c:
-                raise self.fail('quoted argument is not closed with {}'.format(c))
+                raise self.fail(f'quoted argument is not closed with {c}')
             self.pos += 1
             return parts
         return self.template(stop=' )\'"')
@@ -118,7 +118,7 @@ def parse_template(text, where=(None, None)):
     parser = _Parser(text, where)
     parts = parser.template()
     if parser.pos != len(text):
-        raise parser.fail('unexpected {!r}'.format(text[parser.pos]))
+        raise parser.fail(f'unexpected {text[parser.pos]!r}')
     return parts
 
 
@@ -158,13 +158,14 @@ def _truthy(value, name, where):
     if lowered in ('false', '0'):
         return False
     raise LaunchError(
-        '$({}) expects true/false or 1/0, got {!r}'.format(name, value), *where)
+        f'$({name}) expects true/false or 1/0, got {value!r}', *where)
 
 
 def _expect(name, args, counts, where):
     if len(args) not in counts:
-        raise LaunchError('$({}) takes {} argument(s), got {}'.format(
-            name, ' or '.join(str(c) for c in counts), len(args)), *where)
+        expected = ' or '.join(str(c) for c in counts)
+        raise LaunchError(
+            f'$({name}) takes {expected} argument(s), got {len(args)}', *where)
 
 
 def evaluate(parts, context, where=(None, None)):
@@ -186,9 +187,9 @@ def _perform(sub, context, where):
         if args[0] not in context.configurations:
             known = ', '.join(sorted(context.configurations)) or 'none'
             raise LaunchError(
-                "launch configuration '{}' is not set: declare it with <arg name=\"{}\" "
-                'default="..."/> or pass {}:=VALUE (set: {})'.format(
-                    args[0], args[0], args[0], known), *where)
+                f"launch configuration '{args[0]}' is not set: declare it with <arg "
+                f'name="{args[0]}" '
+                f'default="..."/> or pass {args[0]}:=VALUE (set: {known})', *where)
         return context.configurations[args[0]]
     if name == 'env':
         _expect(name, args, (1, 2), where)
@@ -197,12 +198,12 @@ def _perform(sub, context, where):
         if len(args) == 2:
             return args[1]
         raise LaunchError(
-            "environment variable '{}' is not set; give a default: $(env {} DEFAULT)".format(
-                args[0], args[0]), *where)
+            f"environment variable '{args[0]}' is not set; give a default: $(env {args[0]} "
+            'DEFAULT)', *where)
     if name in ('find-pkg-share', 'find-pkg-prefix'):
         _expect(name, args, (1,), where)
         if context.find_package is None:
-            raise LaunchError('$({}) needs an install space'.format(name), *where)
+            raise LaunchError(f'$({name}) needs an install space', *where)
         prefix = context.find_package(args[0], where)
         if name == 'find-pkg-prefix':
             return str(prefix)
@@ -210,19 +211,19 @@ def _perform(sub, context, where):
     if name in ('dirname', 'filename'):
         _expect(name, args, (0,), where)
         if context.launch_file is None:
-            raise LaunchError('$({}) is only valid in a launch file'.format(name), *where)
+            raise LaunchError(f'$({name}) is only valid in a launch file', *where)
         path = Path(context.launch_file).resolve()
         return str(path.parent if name == 'dirname' else path)
     if name == 'anon':
         _expect(name, args, (1,), where)
         return context.anonymous.setdefault(
-            args[0], '{}_{}'.format(args[0], secrets.token_hex(4)))
+            args[0], f'{args[0]}_{secrets.token_hex(4)}')
     if name == 'eval':
         _expect(name, args, (1,), where)
         try:
             return str(eval(args[0], {'__builtins__': {}}, dict(math.__dict__)))
         except Exception as e:  # noqa: B902 the user's expression may raise anything
-            raise LaunchError('$(eval {!r}) failed: {}'.format(args[0], e), *where) from None
+            raise LaunchError(f'$(eval {args[0]!r}) failed: {e}', *where) from None
     if name == 'not':
         _expect(name, args, (1,), where)
         return str(not _truthy(args[0], name, where)).lower()
@@ -231,9 +232,9 @@ def _perform(sub, context, where):
         left, right = (_truthy(a, name, where) for a in args)
         return str(left and right if name == 'and' else left or right).lower()
     raise LaunchError(
-        '$({}) is not supported by colcon-wasm launch (supported: var, env, '
-        'find-pkg-share, find-pkg-prefix, dirname, filename, anon, eval, not, and, or)'
-        .format(name), *where)
+        f'$({name}) is not supported by colcon-wasm launch (supported: var, env, '
+        'find-pkg-share, find-pkg-prefix, dirname, filename, anon, eval, not, and, or)',
+        *where)
 
 
 def substitute(text, context, where=(None, None)):
@@ -252,4 +253,4 @@ def condition(value, context, where):
     if lowered in ('false', '0'):
         return False
     raise LaunchError(
-        'a condition must be true/false or 1/0, got {!r}'.format(text), *where)
+        f'a condition must be true/false or 1/0, got {text!r}', *where)

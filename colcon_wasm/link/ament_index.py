@@ -13,13 +13,15 @@ several prefixes is taken from the first, as `AMENT_PREFIX_PATH` orders them.
 import os
 import xml.etree.ElementTree as ElementTree
 
+from colcon_wasm.error import ColconWasmError
+
 RESOURCE_INDEX = os.path.join('share', 'ament_index', 'resource_index')
 
 """The resource type of pluginlib's plugin descriptions for a base package."""
 PLUGIN_RESOURCE_SUFFIX = '__pluginlib__plugin'
 
 
-class AmentIndexError(Exception):
+class AmentIndexError(ColconWasmError):
     """A broken ament index entry or plugin description (named in the text)."""
 
 

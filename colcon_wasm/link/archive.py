@@ -5,11 +5,13 @@
 
 import os
 
+from colcon_wasm.error import ColconWasmError
+
 MAGIC = b'!<arch>\n'
 HEADER_SIZE = 60
 
 
-class ArchiveError(Exception):
+class ArchiveError(ColconWasmError):
     """An archive that cannot be read."""
 
 

@@ -23,13 +23,15 @@ is installed.
 import json
 import os
 
+from colcon_wasm.error import ColconWasmError
+
 CLOSURE_SCHEMA = 1
 
 """Folder of closure files inside a package's share folder."""
 CLOSURES_FOLDER = os.path.join('colcon_wasm', 'closures')
 
 
-class ClosureError(Exception):
+class ClosureError(ColconWasmError):
     """A closure that is missing, unreadable or names a missing archive."""
 
 

@@ -13,6 +13,8 @@ import json
 import os
 import subprocess
 
+from colcon_wasm.error import ColconWasmError
+
 """A class_loader registration: the instantiation of registerPlugin<D, B>."""
 REGISTRATION_PREFIX = '_ZN12class_loader4impl14registerPlugin'
 
@@ -31,7 +33,7 @@ MAIN_SYMBOLS = ('main', '__main_argc_argv', '__original_main')
 CACHE_SCHEMA = 1
 
 
-class SymbolError(Exception):
+class SymbolError(ColconWasmError):
     """llvm-nm could not read a link input."""
 
 

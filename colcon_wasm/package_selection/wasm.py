@@ -25,27 +25,20 @@ from colcon_core.logging import colcon_logger
 from colcon_core.package_selection import PackageSelectionExtensionPoint
 from colcon_core.plugin_system import satisfies_version
 from colcon_core.topological_order import topological_order_decorators
+from colcon_wasm.build_plan import BuildPlan
+from colcon_wasm.build_plan import PLAN_KEY
 from colcon_wasm.error import ColconWasmError
 from colcon_wasm.error import exit_message
 from colcon_wasm.options import add_wasm_arguments
 from colcon_wasm.options import WasmSettings
 from colcon_wasm.package_discovery.bundled import is_bundled
-from colcon_wasm.plan import BuildPlan
-from colcon_wasm.plan import PLAN_KEY
-from colcon_wasm.recipe import load_recipe
 from colcon_wasm.system_deps import add_system_packages
 from colcon_wasm.system_deps import check_system_dependencies
 from colcon_wasm.system_deps import system_cmake_args
 from colcon_wasm.system_deps import SYSTEM_RULE_KEY
-from colcon_wasm.testing.options import recipe_overlays_for_tests
-from colcon_wasm.testing.verb import is_test_verb
-from colcon_wasm.testing.verb import prepare_test_verb
-from colcon_wasm.toolchain import find_emscripten
 from colcon_wasm.underlay import get_underlays
-from colcon_wasm.underlay import PREFIX_PATH_VARIABLE
-from colcon_wasm.underlay import split_native_prefixes
-from colcon_wasm.underlay import underlay_environment
-from colcon_wasm.underlay import write_marker
+from colcon_wasm.verb_start import get_recipe
+from colcon_wasm.verb_start import started_emscripten
 
 logger = colcon_logger.getChild(__name__)
 
@@ -68,134 +61,6 @@ NEEDED_CATEGORIES = ('build', 'run')
 
 """The bundled package that builds rclcpp_components' stock containers again."""
 CONTAINERS_PACKAGE = 'colcon_wasm_component_containers'
-
-"""Marker in a CMake cache written by a colcon-wasm configure."""
-WASM_CACHE_MARKER = 'COLCON_WASM_EMSCRIPTEN_ROOT:'
-
-_RECIPE_ATTR = '_colcon_wasm_recipe'
-
-
-def get_recipe(args):
-    """
-    Load the recipe once per command (default recipe + `--wasm-recipe`).
-
-    :raises SystemExit: with one line naming file, line and key
-    """
-    recipe = getattr(args, _RECIPE_ATTR, None)
-    if recipe is None:
-        try:
-            recipe = load_recipe(recipe_overlays_for_tests(args)
-                                 + list(getattr(args, 'wasm_recipe', None) or []))
-        except ColconWasmError as e:
-            raise SystemExit(exit_message(e)) from e
-        setattr(args, _RECIPE_ATTR, recipe)
-    return recipe
-
-
-def prepare_underlays(args, emscripten):
-    """
-    Make the underlays visible to this build, and only them.
-
-    Native prefixes (a sourced /opt/ros/humble) are dropped from the build
-    variables, the underlays' colcon scripts are sourced into this process,
-    and the install base is marked as a `--wasm` one.
-
-    :returns: the :class:`colcon_wasm.underlay.Underlay` list
-    """
-    underlays = get_underlays(args)
-    kept, removed = split_native_prefixes(os.environ)
-    if removed:
-        os.environ.update(kept)
-        logger.warning(
-            'Ignoring native prefixes for this --wasm build (their libraries are not '
-            'WebAssembly): ' + ', '.join(sorted({e for _, e in removed})) + '; '
-            '--wasm builds stand on --wasm underlays only (source an install_wasm/'
-            f'setup.sh, which sets {PREFIX_PATH_VARIABLE}, or pass --wasm-underlay)')
-    try:
-        os.environ.update(underlay_environment(underlays, os.environ))
-    except ColconWasmError as e:
-        raise SystemExit(exit_message(e)) from e
-    for underlay in underlays:
-        logger.info(f"Using the --wasm underlay '{underlay.base}' ({underlay.source})")
-    write_marker(
-        Path(getattr(args, 'install_base', None) or 'install_wasm').absolute(),
-        emscripten=emscripten.describe(),
-        pthread=not getattr(args, 'wasm_no_pthread', False),
-        underlays=[u.base for u in underlays], recipe=get_recipe(args).describe())
-    return underlays
-
-
-def _is_build_verb(args):
-    return getattr(args, 'verb_name', None) == 'build' or \
-        hasattr(args, 'build_base') and hasattr(args, 'install_base')
-
-
-def find_build_folders(build_base, *, wasm):
-    """
-    List package build folders of the other kind (native vs wasm).
-
-    :param build_base: the build base
-    :param bool wasm: True to find native folders, False to find wasm ones
-    :returns: sorted folder paths
-    """
-    base = Path(build_base)
-    if not base.is_dir():
-        return []
-    found = []
-    for cache in sorted(base.glob('*/CMakeCache.txt')):
-        try:
-            text = cache.read_text(errors='replace')
-        except OSError:
-            continue
-        is_wasm = WASM_CACHE_MARKER in text
-        if is_wasm != wasm:
-            found.append(cache.parent)
-    return found
-
-
-def check_build_base(args):
-    """
-    Refuse to mix native and wasm builds in one build base.
-
-    :raises SystemExit: naming the folders and what to do
-    """
-    build_base = getattr(args, 'build_base', None)
-    if build_base is None:
-        return
-    wasm = bool(getattr(args, 'wasm', False))
-    folders = find_build_folders(build_base, wasm=wasm)
-    if not folders:
-        return
-    names = ', '.join(f"'{f}'" for f in folders[:5])
-    more = f' and {len(folders) - 5} more' if len(folders) > 5 else ''
-    if wasm:
-        raise SystemExit(exit_message(ColconWasmError(
-            f"build base '{build_base}' holds native builds ({names}{more}); "
-            'a --wasm build must not reuse them: drop --build-base (the '
-            "default is 'build_wasm') or remove those folders")))
-    raise SystemExit(exit_message(ColconWasmError(
-        f"build base '{build_base}' holds --wasm builds ({names}{more}); "
-        'add --wasm, or use another --build-base for native builds'),
-        command='colcon build'))
-
-
-def prepare_environment(args):
-    """
-    Find Emscripten and set the environment of the whole build.
-
-    :returns: the :class:`colcon_wasm.toolchain.Emscripten`
-    :raises SystemExit: with one line when no usable Emscripten is found
-    """
-    try:
-        emscripten = find_emscripten(getattr(args, 'wasm_emscripten', None))
-    except ColconWasmError as e:
-        raise SystemExit(exit_message(e)) from e
-    os.environ.update(emscripten.environment())
-    os.environ.update(get_recipe(args).env)
-    logger.info(
-        f'Using Emscripten {emscripten.version_string} in '
-        f"'{emscripten.root}' ({emscripten.source})")
-    return emscripten
 
 
 class WasmDependencyPackageSelection(PackageSelectionExtensionPoint):
@@ -288,17 +153,10 @@ class WasmPackageSelection(PackageSelectionExtensionPoint):
         add_wasm_arguments(parser)
 
     def check_parameters(self, *, args, pkg_names):  # noqa: D102
-        if _is_build_verb(args):
-            check_build_base(args)
-        if not getattr(args, 'wasm', False):
-            return
-        get_recipe(args)
-        if is_test_verb(args):
-            prepare_test_verb(args)
-        elif _is_build_verb(args):
-            emscripten = prepare_environment(args)
-            setattr(args, '_colcon_wasm_emscripten', emscripten)
-            prepare_underlays(args, emscripten)
+        # pure: the build and test verbs found Emscripten and set the
+        # environment when they started (colcon_wasm.verb_start)
+        if getattr(args, 'wasm', False):
+            get_recipe(args)
 
     def select_packages(self, *, args, decorators):  # noqa: D102
         if not getattr(args, 'wasm', False):
@@ -324,7 +182,7 @@ class WasmPackageSelection(PackageSelectionExtensionPoint):
             raise SystemExit(exit_message(ColconWasmError(
                 f'{len(problems)} system dependencies have no WebAssembly build:\n'
                 + '\n'.join(f'  {p}' for p in problems))))
-        emscripten = getattr(args, '_colcon_wasm_emscripten', None)
+        emscripten = started_emscripten(args)
         settings = WasmSettings(args)
         for decorator in decorators:
             pkg = decorator.descriptor

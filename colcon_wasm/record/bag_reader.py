@@ -62,14 +62,13 @@ def bag_files(path):
                 info = yaml.safe_load(meta.read_text(encoding='utf-8'))
                 names = info['rosbag2_bagfile_information']['relative_file_paths']
             except (yaml.YAMLError, KeyError, TypeError) as e:
-                raise BagError("the bag '{}' has an unreadable metadata.yaml: {}".format(
-                    path, e)) from None
+                raise BagError(f"the bag '{path}' has an unreadable metadata.yaml: {e}") from None
         files = [path / n for n in names if n.endswith('.mcap')] or sorted(path.glob('*.mcap'))
         if not files:
-            raise BagError("the bag '{}' has no .mcap file (other storage, such as sqlite3, "
-                           'is not supported)'.format(path))
+            raise BagError(f"the bag '{path}' has no .mcap file (other storage, such as "
+                           'sqlite3, is not supported)')
         return files
-    raise BagError("no bag at '{}': name a .mcap file or a rosbag2 directory".format(path))
+    raise BagError(f"no bag at '{path}': name a .mcap file or a rosbag2 directory")
 
 
 def read_messages(path, on_topic):
@@ -88,8 +87,8 @@ def read_messages(path, on_topic):
     with open(path, 'rb') as f:
         magic = f.read(len(MAGIC))
         if magic != MAGIC:
-            raise BagError("'{}' is not an MCAP file: it does not start with the MCAP "
-                           'magic (found {!r})'.format(path, magic))
+            raise BagError(f"'{path}' is not an MCAP file: it does not start with the MCAP "
+                           f'magic (found {magic!r})')
         reader = StreamReader(f, skip_magic=True, emit_chunks=True, validate_crcs=True,
                               record_size_limit=max(size, 1))
         records = iter(reader.records)
@@ -120,9 +119,9 @@ def read_messages(path, on_topic):
                         wanted[r.id] = bool(on_topic(topics[r.id]))
                 elif isinstance(r, Message):
                     if r.channel_id not in topics:
-                        raise BagError("'{}': the message at or after byte {} is on channel {}, "
-                                       'which no Channel record before it '
-                                       'describes'.format(path, offset, r.channel_id))
+                        raise BagError(f"'{path}': the message at or after byte {offset} is on "
+                                       f'channel {r.channel_id}, which no Channel record before '
+                                       'it describes')
                     if wanted[r.channel_id]:
                         yield topics[r.channel_id], r.log_time, r.publish_time, r.data
             if isinstance(record, Footer):
@@ -133,16 +132,15 @@ def _broken(path, f, offset, size, error):
     f.seek(offset)
     opcode = f.read(1)
     if not opcode:
-        return BagError("'{}' ends at byte {} without a Footer record: it was cut off "
-                        '(the recording did not finish); the messages before it were '
-                        'read'.format(path, offset))
-    name = _RECORD_NAMES.get(opcode[0], 'unknown (opcode 0x{:02x})'.format(opcode[0]))
+        return BagError(f"'{path}' ends at byte {offset} without a Footer record: it was cut "
+                        'off (the recording did not finish); the messages before it were read')
+    name = _RECORD_NAMES.get(opcode[0], f'unknown (opcode 0x{opcode[0]:02x})')
     head = f.read(8)
     length = struct.unpack('<Q', head)[0] if len(head) == 8 else None
     if length is None or offset + 9 + length > size:
-        what = 'is cut off: the file ends at byte {}{}'.format(
-            size, '' if length is None else ' of its {} bytes'.format(length))
+        what = ('is cut off: the file ends at byte '
+                f"{size}{('' if length is None else f' of its {length} bytes')}")
     else:
-        what = 'is corrupt ({}: {})'.format(type(error).__name__, error)
-    return BagError("'{}': the {} record at byte offset {} {}; the messages before it "
-                    'were read'.format(path, name, offset, what))
+        what = f'is corrupt ({type(error).__name__}: {error})'
+    return BagError(f"'{path}': the {name} record at byte offset {offset} {what}; the messages "
+                    'before it were read')

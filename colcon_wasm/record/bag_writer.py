@@ -101,7 +101,7 @@ class BagWriter:
         try:
             self._sink = _FileSink(path)
         except OSError as e:
-            raise BagError("cannot create the bag '{}': {}".format(path, e.strerror)) from None
+            raise BagError(f"cannot create the bag '{path}': {e.strerror}") from None
         self._writer = Writer(self._sink, chunk_size=chunk_size,
                               compression=COMPRESSIONS[compression])
         self._compression = compression
@@ -113,7 +113,7 @@ class BagWriter:
         self._last = None
         self._chunk_opened = None
         self._guard(lambda: self._writer.start(
-            profile='ros2', library='colcon-wasm {}'.format(__version__)))
+            profile='ros2', library=f'colcon-wasm {__version__}'))
 
     def add_topic(self, topic, type_name, qos_profiles):
         """
@@ -229,6 +229,6 @@ class BagWriter:
             self._sink.cut_to_good()
         why = {errno.ENOSPC: 'the disk is full', errno.EFBIG: 'the file size limit is reached',
                errno.EDQUOT: 'the disk quota is used up'}.get(error.errno, error.strerror)
-        self.failed = ("recording to '{}' stopped: {} ({}) after {} bytes; {} and stays "
-                       'readable (messages kept: those of the chunks written); free some space '
-                       'and record again'.format(self.path, why, error.strerror, kept, ended))
+        self.failed = (f"recording to '{self.path}' stopped: {why} ({error.strerror}) after "
+                       f'{kept} bytes; {ended} and stays readable (messages kept: those of the '
+                       'chunks written); free some space and record again')

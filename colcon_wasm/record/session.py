@@ -71,8 +71,8 @@ def add_play_arguments(parser, *, option):
         help='Play only these topics')
     parser.add_argument(
         '--clock', nargs='?', type=_positive, const=DEFAULT_CLOCK_HZ, default=None, metavar='HZ',
-        help='Publish /clock (rosgraph_msgs/msg/Clock) with the bag time at HZ (default {}) '
-             'for use_sim_time nodes'.format(DEFAULT_CLOCK_HZ))
+        help='Publish /clock (rosgraph_msgs/msg/Clock) with the bag time at HZ (default '
+             f'{DEFAULT_CLOCK_HZ}) for use_sim_time nodes')
 
 
 def bag_plan(args, *, play=None, stop_after_play=False):
@@ -87,8 +87,7 @@ def bag_plan(args, *, play=None, stop_after_play=False):
     if getattr(args, 'record', None):
         directory = os.path.dirname(os.path.abspath(args.record)) or '.'
         if not os.path.isdir(directory):
-            raise LaunchError("--record '{}': the folder '{}' does not exist".format(
-                args.record, directory))
+            raise LaunchError(f"--record '{args.record}': the folder '{directory}' does not exist")
         plan['record'] = {'path': args.record, 'topics': list(args.record_topic) or None,
                           'compression': args.record_compression}
     elif getattr(args, 'record_topic', None):
@@ -161,7 +160,7 @@ class BagSession:
         self._threads.append(t)
 
     def _say(self, level, text):
-        print('[{}] [{}]: {}'.format(level, 'rosbag2', text), file=self.err, flush=True)
+        print(f'[{level}] [rosbag2]: {text}', file=self.err, flush=True)
 
     def _record(self, writer, stream):
         channels = {}
@@ -174,12 +173,10 @@ class BagSession:
                         channels[c['id']] = writer.add_topic(c['topic'], c['type'], c['qos'])
                     except SchemaError as e:
                         channels[c['id']] = None
-                        self._say('WARNING', "not recording topic '{}': {}".format(
-                            c['topic'], e))
+                        self._say('WARNING', f"not recording topic '{c['topic']}': {e}")
                         continue
                     if channels[c['id']] is not None:
-                        self._say('INFO', "recording topic '{}' ({})".format(
-                            c['topic'], c['type']))
+                        self._say('INFO', f"recording topic '{c['topic']}' ({c['type']})")
                 elif kind == frames.MESSAGE:
                     channel, log_time, publish_time, data = frames.decode_recorded(body)
                     target = channels.get(channel)
@@ -197,9 +194,9 @@ class BagSession:
                 self.failed = True
                 self._say('ERROR', writer.failed)
             if not writer.failed:
-                self._say('INFO', "recorded {} messages into '{}'{}".format(
-                    writer.messages, writer.path,
-                    ' ({} dropped: the disk did not keep up)'.format(dropped) if dropped else ''))
+                lost = f' ({dropped} dropped: the disk did not keep up)' if dropped else ''
+                self._say('INFO',
+                          f"recorded {writer.messages} messages into '{writer.path}'{lost}")
 
     def _play(self, spec, stream):
         schemas = self.install_space.ros2msg_schemas()
@@ -228,7 +225,7 @@ class BagSession:
                             round_count += 1
                     except BagError as e:
                         self.failed = True
-                        self._say('ERROR', '{}; played {} messages'.format(e, sent))
+                        self._say('ERROR', f'{e}; played {sent} messages')
                         return
                 if not spec['loop'] or last is None:
                     break
@@ -254,17 +251,17 @@ class BagSession:
             return announced[topic.name][1] == topic.type
         problem = None
         if topic.message_encoding != 'cdr':
-            problem = "its messages are encoded as '{}', not cdr".format(topic.message_encoding)
+            problem = f"its messages are encoded as '{topic.message_encoding}', not cdr"
         elif not topic.type:
             problem = 'it has no schema'
         else:
             try:
                 schemas.full_text(topic.type)
             except SchemaError:
-                problem = ("the workspace does not know its type '{}': build its interface "
-                           "package with 'colcon build --wasm'".format(topic.type))
+                problem = (f"the workspace does not know its type '{topic.type}': build its "
+                           "interface package with 'colcon build --wasm'")
         if problem:
-            self._say('WARNING', "skipping topic '{}': {}".format(topic.name, problem))
+            self._say('WARNING', f"skipping topic '{topic.name}': {problem}")
             announced[topic.name] = (None, None)
             return False
         channel = len(announced) + 1

@@ -34,11 +34,12 @@ def find_runtime(install_space, bundled_dir):
     candidates.append((Path(bundled_dir), 'colcon-wasm'))
     for directory, origin in candidates:
         if any((directory / entry).is_file() for entry in RUNTIME_ENTRIES):
-            return directory, '{} ({})'.format(origin, directory)
+            return directory, f'{origin} ({directory})'
+    entries = "' or '".join(RUNTIME_ENTRIES)
     raise ServeError(
-        "the wasm_js runtime was not found: neither the install space '{}' nor colcon-wasm "
-        "has '{}'; rebuild with 'colcon build --wasm' or reinstall colcon-wasm".format(
-            install_space.base, "' or '".join(RUNTIME_ENTRIES)))
+        'the wasm_js runtime was not found: neither the install space '
+        f"'{install_space.base}' nor colcon-wasm has '{entries}'; rebuild with "
+        "'colcon build --wasm' or reinstall colcon-wasm")
 
 
 def runtime_entry(runtime_dir):

@@ -10,6 +10,8 @@ from pathlib import Path
 import threading
 from urllib.parse import unquote
 
+from colcon_wasm.error import ColconWasmError
+
 MIME_TYPES = {
     '.wasm': 'application/wasm',
     '.js': 'text/javascript; charset=utf-8',
@@ -31,7 +33,7 @@ COMPRESSIBLE = {'.wasm', '.js', '.mjs', '.json', '.map', '.html', '.css', '.svg'
 MIN_COMPRESS_BYTES = 1024
 
 
-class Refused(Exception):
+class Refused(ColconWasmError):
     """A request for a path that is not served; ``status`` says why."""
 
     def __init__(self, status, reason):
@@ -65,7 +67,7 @@ def split_url_path(url_path):
     for raw in raw_segments:
         segment = unquote(raw, errors='strict') if '%' in raw else raw
         if segment in ('', '.', '..') or any(c in segment for c in '/\\\0'):
-            raise Refused(403, 'path traversal refused: {!r}'.format(url_path))
+            raise Refused(403, f'path traversal refused: {url_path!r}')
         segments.append(segment)
     return segments
 

@@ -19,6 +19,7 @@ from urllib.parse import parse_qs
 from urllib.parse import urlsplit
 
 from colcon_core.logging import colcon_logger
+from colcon_wasm.error import ColconWasmError
 from colcon_wasm.server.files import choose_body
 from colcon_wasm.server.files import CompressionCache
 from colcon_wasm.server.files import content_type
@@ -34,7 +35,7 @@ ISOLATION_HEADERS = {
 }
 
 
-class ServeError(Exception):
+class ServeError(ColconWasmError):
     """The server cannot start; the message says why and what to do."""
 
 
@@ -76,7 +77,7 @@ class LauncherRequestHandler(BaseHTTPRequestHandler):
         self.send_header('Cache-Control', 'no-cache')
 
     def _error(self, status, reason, extra=None):
-        body = '{} {}: {}\n'.format(int(status), HTTPStatus(status).phrase, reason).encode()
+        body = f'{int(status)} {HTTPStatus(status).phrase}: {reason}\n'.encode()
         self.send_response(status)
         self._common_headers()
         self.send_header('Content-Type', 'text/plain; charset=utf-8')
@@ -101,7 +102,7 @@ class LauncherRequestHandler(BaseHTTPRequestHandler):
             self._error(HTTPStatus.BAD_REQUEST, 'the path is not valid UTF-8')
             return
         except Exception as e:  # noqa: B902 a broken template or manifest must not kill the server
-            logger.error('Serving {}: {}'.format(self.path, e))
+            logger.error(f'Serving {self.path}: {e}')
             self._error(HTTPStatus.INTERNAL_SERVER_ERROR, str(e))
             return
         if content.body is not None:
@@ -112,10 +113,10 @@ class LauncherRequestHandler(BaseHTTPRequestHandler):
                 content.path, self.headers.get('Accept-Encoding'), self.server.compression,
                 precompressed=content.precompressed)
         except OSError as e:
-            self._error(HTTPStatus.NOT_FOUND, 'cannot read: {}'.format(e.strerror))
+            self._error(HTTPStatus.NOT_FOUND, f'cannot read: {e.strerror}')
             return
         suffix = '-' + encoding if encoding else ''
-        etag = '"{:x}-{:x}{}"'.format(stat.st_mtime_ns, stat.st_size, suffix)
+        etag = f'"{stat.st_mtime_ns:x}-{stat.st_size:x}{suffix}"'
         if self.headers.get('If-None-Match') == etag:
             self.send_response(HTTPStatus.NOT_MODIFIED)
             self._common_headers()
@@ -148,7 +149,7 @@ class LauncherRequestHandler(BaseHTTPRequestHandler):
 
     def log_message(self, format, *args):  # noqa: A002 the signature of http.server
         """Log requests at debug level (errors stay visible in the page)."""
-        logger.debug('%s - %s' % (self.address_string(), format % args))
+        logger.debug(f'{self.address_string()} - {format % args}')
 
 
 class LauncherServer(ThreadingHTTPServer):
@@ -175,24 +176,23 @@ class LauncherServer(ThreadingHTTPServer):
         except OSError as e:
             if e.errno == errno.EADDRINUSE:
                 raise ServeError(
-                    'port {} on {} is already in use (another colcon-wasm serve, or another '
-                    'server?): stop it, or pass --port N (--port 0 picks a free port)'.format(
-                        port, host)) from None
+                    f'port {port} on {host} is already in use (another colcon-wasm serve, or '
+                    'another '
+                    'server?): stop it, or pass --port N (--port 0 picks a free port)') from None
             if e.errno == errno.EACCES:
                 raise ServeError(
-                    'no permission to listen on port {} of {}: use a port above 1023, '
-                    'e.g. --port 8000'.format(port, host)) from None
-            raise ServeError('cannot listen on {}:{}: {}'.format(
-                host, port, e.strerror or e)) from None
+                    f'no permission to listen on port {port} of {host}: use a port above 1023, '
+                    'e.g. --port 8000') from None
+            raise ServeError(f'cannot listen on {host}:{port}: {e.strerror or e}') from None
 
     @property
     def url(self):
         """Return the URL of the page."""
         host, port = self.server_address[:2]
         if ':' in host:
-            host = '[{}]'.format(host)
-        return 'http://{}:{}/'.format(host, port)
+            host = f'[{host}]'
+        return f'http://{host}:{port}/'
 
     def handle_error(self, request, client_address):
         """Log a failed connection without a traceback on the console."""
-        logger.debug('connection from {} failed'.format(client_address), exc_info=True)
+        logger.debug(f'connection from {client_address} failed', exc_info=True)

@@ -46,6 +46,7 @@ import threading
 import time
 
 from colcon_core.logging import colcon_logger
+from colcon_wasm.error import ColconWasmError
 from colcon_wasm.server.relay_forms import decode_request
 from colcon_wasm.server.relay_forms import Forms
 from colcon_wasm.server.relay_forms import jsonable
@@ -67,7 +68,7 @@ PRIMITIVES = {'bool', 'byte', 'char', 'int8', 'uint8', 'int16', 'uint16', 'int32
 ROSAPI_NAMES = {'float64': 'double', 'float32': 'float', 'bool': 'boolean', 'byte': 'octet'}
 
 
-class RequestError(Exception):
+class RequestError(ColconWasmError):
     """A request the relay refuses: the message goes into a status error."""
 
 
@@ -75,25 +76,24 @@ def _field(msg, name, kind, required=False):
     value = msg.get(name)
     if value is None:
         if required:
-            raise RequestError("{}: field '{}' is missing".format(msg.get('op'), name))
+            raise RequestError(f"{msg.get('op')}: field '{name}' is missing")
         return None
     ok = {'str': isinstance(value, str), 'int': isinstance(value, int) and
           not isinstance(value, bool), 'bool': isinstance(value, bool),
           'dict': isinstance(value, dict), 'id': isinstance(value, (str, int))}[kind]
     if not ok:
-        raise RequestError("{}: field '{}' must be {}, got {}".format(
-            msg.get('op'), name, {'str': 'a string', 'int': 'an integer', 'bool': 'a boolean',
-                                  'dict': 'a JSON object', 'id': 'a string or a number'}[kind],
-            type(value).__name__))
+        wanted = {'str': 'a string', 'int': 'an integer', 'bool': 'a boolean',
+                  'dict': 'a JSON object', 'id': 'a string or a number'}[kind]
+        raise RequestError(
+            f"{msg.get('op')}: field '{name}' must be {wanted}, got {type(value).__name__}")
     return value
 
 
 def _name(msg, field):
     value = _field(msg, field, 'str', required=True)
-    full = value if value.startswith('/') else '/' + value
+    full = value if value.startswith('/') else f'/{value}'
     if not NAME.match(full):
-        raise RequestError("{}: field '{}' is not a valid ROS name: '{}'".format(
-            msg.get('op'), field, value))
+        raise RequestError(f"{msg.get('op')}: field '{field}' is not a valid ROS name: '{value}'")
     return full
 
 
@@ -106,7 +106,7 @@ def _raw_publish(msg):
 
 def _normalize(type_name, kind='msg'):
     parts = type_name.strip().split('/')
-    return '{}/{}/{}'.format(parts[0], kind, parts[1]) if len(parts) == 2 else type_name.strip()
+    return f'{parts[0]}/{kind}/{parts[1]}' if len(parts) == 2 else type_name.strip()
 
 
 class Peer:
@@ -142,7 +142,7 @@ class Peer:
     @property
     def label(self):
         """The node names it stands for in rosapi answers."""
-        return self.nodes or ['/rosbridge_relay/client_{}'.format(self.number)]
+        return self.nodes or [f'/rosbridge_relay/client_{self.number}']
 
 
 class Relay:
@@ -180,13 +180,14 @@ class Relay:
 
         def oversize(n):
             if peer:
-                peer.status('error', 'a message of {} bytes is larger than the limit of {} bytes; '
-                                     'it was dropped'.format(n, self.max_message_bytes))
+                peer.status('error', f'a message of {n} bytes is larger than the limit of '
+                                     f'{self.max_message_bytes} bytes; '
+                                     'it was dropped')
 
         def cut_off(n):
-            logger.warning('rosbridge relay: client {} ({}) cut off: it did not read, more than '
-                           '{} bytes were waiting'.format(peer.number, where,
-                                                          self.max_queued_bytes))
+            logger.warning(f'rosbridge relay: client {peer.number} ({where}) cut off: it did not '
+                           'read, more than '
+                           f'{self.max_queued_bytes} bytes were waiting')
 
         conn = Connection(sock, max_message_bytes=self.max_message_bytes,
                           max_queued_bytes=self.max_queued_bytes, on_oversize=oversize,
@@ -215,7 +216,7 @@ class Relay:
                     del self.pending[rid]
                 elif call['provider'] is peer:
                     del self.pending[rid]
-                    self._fail(call, '{} left before answering'.format(call['name']))
+                    self._fail(call, f"{call['name']} left before answering")
 
     def close(self):
         """Stop the relay and close every client."""
@@ -233,8 +234,8 @@ class Relay:
                 for rid, call in list(self.pending.items()):
                     if call['deadline'] is not None and now > call['deadline']:
                         del self.pending[rid]
-                        self._fail(call, '{} did not answer within {:g} s'.format(
-                            call['name'], call['timeout']))
+                        self._fail(call, f"{call['name']} did not answer within "
+                                         f"{call['timeout']:g} s")
 
     def _fail(self, call, text):
         caller = call['caller']
@@ -247,7 +248,7 @@ class Relay:
         if call['id'] is not None:
             out['id'] = call['id']
         caller.send(out)
-        caller.status('error', '{}: {}'.format(call['name'], text), call['id'])
+        caller.status('error', f"{call['name']}: {text}", call['id'])
 
     # ------------------------------------------------------------ requests
 
@@ -259,23 +260,23 @@ class Relay:
                 if isinstance(msg, dict) and not _raw_publish(msg):
                     msg = jsonable(msg)
             except ValueError as e:
-                peer.status('error', '{}; the request was dropped'.format(e))
+                peer.status('error', f'{e}; the request was dropped')
                 return
         else:
             try:
                 msg = json.loads(data)
             except ValueError as e:
                 match = ID_IN_TEXT.search(data[:4096])
-                peer.status('error', 'malformed JSON: {}; the request was dropped'.format(e),
+                peer.status('error', f'malformed JSON: {e}; the request was dropped',
                             json.loads(match.group(1)) if match else None)
                 return
         if not isinstance(msg, dict) or not isinstance(msg.get('op'), str):
             peer.status('error', "a rosbridge request must be a JSON object with an 'op' field",
                         msg.get('id') if isinstance(msg, dict) else None)
             return
-        handler = getattr(self, '_op_' + msg['op'], None)
+        handler = getattr(self, f"_op_{msg['op']}", None)
         if handler is None:
-            peer.status('error', 'unknown operation "{}"'.format(msg['op']), msg.get('id'))
+            peer.status('error', f"unknown operation \"{msg['op']}\"", msg.get('id'))
             return
         try:
             with self.lock:
@@ -298,8 +299,7 @@ class Relay:
     def _op_set_level(self, peer, msg):
         level = _field(msg, 'level', 'str', True)
         if level not in LEVELS:
-            raise RequestError("set_level: field 'level' must be one of {}".format(
-                ', '.join(LEVELS)))
+            raise RequestError(f"set_level: field 'level' must be one of {', '.join(LEVELS)}")
         peer.level = level
 
     def _op_status(self, peer, msg):
@@ -348,8 +348,8 @@ class Relay:
         self._check_type('advertise', 'type', type_name)
         known = self._known_type(topic)
         if known and known != type_name:
-            raise RequestError("advertise: field 'type' is {}, but topic '{}' has type {}".format(
-                type_name, topic, known))
+            raise RequestError(f"advertise: field 'type' is {type_name}, but topic '{topic}' "
+                               f'has type {known}')
         if topic not in peer.publications:
             peer.publications[topic] = type_name
             self._update_forms(topic)
@@ -368,7 +368,7 @@ class Relay:
         compression = _field(msg, 'compression', 'str') or 'none'
         if compression not in ('none', 'png', 'cbor', 'cbor-raw'):
             raise RequestError("subscribe: field 'compression' must be one of none, png, cbor, "
-                               "cbor-raw, got '{}'".format(compression))
+                               f"cbor-raw, got '{compression}'")
         request = {'compression': compression}
         for key in ('throttle_rate', 'queue_length', 'fragment_size'):
             request[key.split('_rate')[0]] = max(0, _field(msg, key, 'int') or 0)
@@ -376,8 +376,8 @@ class Relay:
         if sub is None:
             sub = peer.subscriptions[topic] = Subscription(peer, topic, type_name)
         elif type_name and sub.type and type_name != sub.type:
-            raise RequestError("subscribe: field 'type' is {}, but this client is subscribed to "
-                               "'{}' as {}".format(type_name, topic, sub.type))
+            raise RequestError(f"subscribe: field 'type' is {type_name}, but this client is "
+                               f"subscribed to '{topic}' as {sub.type}")
         sub.requests[msg.get('id')] = request
         self.stats['dropped'] += sub.update()
         if type_name and not sub.type:
@@ -409,8 +409,8 @@ class Relay:
             known = self._known_type(topic) or (_normalize(msg['type'])
                                                 if isinstance(msg.get('type'), str) else None)
             if not known:
-                raise RequestError("publish: cannot infer the type of topic '{}': advertise it "
-                                   'with a type first'.format(topic))
+                raise RequestError(f"publish: cannot infer the type of topic '{topic}': advertise "
+                                   'it with a type first')
             peer.publications[topic] = known
             self._update_forms(topic)
         type_name = peer.publications[topic]
@@ -443,8 +443,8 @@ class Relay:
     def _provider(self, table, name, what):
         entry = table.get(name)
         if entry is None:
-            raise RequestError('{} {} does not exist: no client of the relay advertised '
-                               'it'.format(what, name))
+            raise RequestError(f'{what} {name} does not exist: no client of the relay advertised '
+                               'it')
         return entry
 
     def _op_advertise_service(self, peer, msg):
@@ -452,7 +452,7 @@ class Relay:
         type_name = _normalize(_field(msg, 'type', 'str', True), 'srv')
         if self.service_types and type_name not in self.service_types:
             raise RequestError("advertise_service: field 'type' names an unknown service type "
-                               "'{}'".format(type_name))
+                               f"'{type_name}'")
         self.services[name] = (peer, type_name)
 
     def _op_unadvertise_service(self, peer, msg):
@@ -474,18 +474,17 @@ class Relay:
             timeout if timeout > 0 else None)
         if name not in self.services:
             out = {'op': 'service_response', 'service': msg['service'], 'result': False,
-                   'values': "service '{}' does not exist (no client of the relay serves "
-                             'it)'.format(name)}
+                   'values': f"service '{name}' does not exist (no client of the relay serves it)"}
             if msg.get('id') is not None:
                 out['id'] = msg['id']
             peer.send(out)
-            peer.status('error', 'call_service {}: {}'.format(name, out['values']), msg.get('id'))
+            peer.status('error', f"call_service {name}: {out['values']}", msg.get('id'))
             return
         provider, service_type = self.services[name]
         entry = self.service_types.get(service_type)
         if entry and isinstance(msg.get('args'), dict):
             self._check('call_service', entry['request'], msg['args'])
-        rid = 'relay:{}'.format(next(self._ids))
+        rid = f'relay:{next(self._ids)}'
         self.pending[rid] = {'caller': peer, 'id': msg.get('id'), 'kind': 'service', 'name': name,
                              'provider': provider, 'timeout': timeout,
                              'deadline': None if timeout is None else time.monotonic() + timeout}
@@ -496,8 +495,8 @@ class Relay:
         rid = str(_field(msg, 'id', 'id', True))
         call = self.pending.get(rid)
         if call is None or call['provider'] is not peer:
-            raise RequestError("service_response: field 'id' ('{}') names no pending call of "
-                               'this client'.format(rid))
+            raise RequestError(f"service_response: field 'id' ('{rid}') names no pending call of "
+                               'this client')
         del self.pending[rid]
         out = {'op': 'service_response', 'service': call['name'], 'values': msg.get('values'),
                'result': bool(msg.get('result'))}
@@ -516,7 +515,7 @@ class Relay:
     def _op_send_action_goal(self, peer, msg):
         name = _name(msg, 'action')
         provider, type_name = self._provider(self.actions, name, 'action')
-        rid = 'relay:{}'.format(next(self._ids))
+        rid = f'relay:{next(self._ids)}'
         self.pending[rid] = {'caller': peer, 'id': msg.get('id'), 'kind': 'action', 'name': name,
                              'provider': provider, 'timeout': None, 'deadline': None,
                              'feedback': bool(msg.get('feedback'))}
@@ -531,15 +530,16 @@ class Relay:
                 call['provider'].send({'op': 'cancel_action_goal', 'id': rid,
                                        'action': call['name']})
                 return
-        raise RequestError("cancel_action_goal: field 'id' ('{}') names no goal of this client "
-                           'in progress'.format(gid))
+        raise RequestError(f"cancel_action_goal: field 'id' ('{gid}') names no goal of this "
+                           'client '
+                           'in progress')
 
     def _goal(self, peer, msg):
         rid = str(_field(msg, 'id', 'id', True))
         call = self.pending.get(rid)
         if call is None or call['provider'] is not peer:
-            raise RequestError("{}: field 'id' ('{}') names no goal sent to this client".format(
-                msg['op'], rid))
+            raise RequestError(f"{msg['op']}: field 'id' ('{rid}') names no goal sent to this "
+                               'client')
         return rid, call
 
     def _op_action_feedback(self, peer, msg):
@@ -563,32 +563,33 @@ class Relay:
 
     def _check_type(self, op, field, type_name):
         if self.messages and type_name not in self.messages:
-            raise RequestError("{}: field '{}' names an unknown type '{}': no types.json of the "
-                               'install space describes it'.format(op, field, type_name))
+            raise RequestError(f"{op}: field '{field}' names an unknown type '{type_name}': no "
+                               'types.json of the '
+                               'install space describes it')
 
     def _check(self, op, type_name, value, path=''):
         """Check a JSON message against its type description (when the install space has it)."""
         description = self.messages.get(type_name)
         if description is None:
             return
-        where = '{}: {}: field '.format(op, type_name)
+        where = f'{op}: {type_name}: field '
         if not isinstance(value, dict):
-            raise RequestError("{}'{}': expected a JSON object, got {}".format(
-                where, path or '.', type(value).__name__))
+            raise RequestError(f"{where}'{path or '.'}': expected a JSON object, got "
+                               f'{type(value).__name__}')
         fields = {f['name']: f for f in description.get('fields', [])}
         for key, item in value.items():
-            p = path + '.' + key if path else key
+            p = f'{path}.{key}' if path else key
             f = fields.get(key)
             if f is None:
-                raise RequestError("{}'{}': {} has no field '{}' (fields: {})".format(
-                    where, p, type_name, key, ', '.join(fields)))
+                raise RequestError(f"{where}'{p}': {type_name} has no field '{key}' (fields: "
+                                   f"{', '.join(fields)})")
             items = [item]
             if f.get('sequence') or 'array_size' in f:
                 if f['type'] in ('uint8', 'char', 'byte') and isinstance(item, str):
                     continue
                 if not isinstance(item, list):
-                    raise RequestError("{}'{}': expected an array of {}, got {}".format(
-                        where, p, f['type'], type(item).__name__))
+                    raise RequestError(f"{where}'{p}': expected an array of {f['type']}, got "
+                                       f'{type(item).__name__}')
                 items = item
             for v in items:
                 self._check_value(op, where, p, f['type'], v)
@@ -604,13 +605,12 @@ class Relay:
         elif kind in PRIMITIVES:
             ok, label = (isinstance(v, int) and not isinstance(v, bool)) or (
                 kind in ('int64', 'uint64') and isinstance(v, str) and v.strip().lstrip(
-                    '-').isdigit()), 'an integer ({})'.format(kind)
+                    '-').isdigit()), f'an integer ({kind})'
         else:
             self._check(op, _normalize(kind), v, path)
             return
         if not ok:
-            raise RequestError("{}'{}': expected {}, got {}".format(
-                where, path, label, json.dumps(v)[:40]))
+            raise RequestError(f"{where}'{path}': expected {label}, got {json.dumps(v)[:40]}")
 
     # ------------------------------------------------------------ rosapi
 
@@ -630,10 +630,10 @@ class Relay:
             return value if isinstance(value, str) else ''
 
         def full(value):
-            return value if value.startswith('/') else '/' + value
+            return value if value.startswith('/') else f'/{value}'
 
         topics = self._topics()
-        services = sorted(set(self.services) | {'/rosapi/' + n for n in ROSAPI})
+        services = sorted(set(self.services) | {f'/rosapi/{n}' for n in ROSAPI})
         if name == 'topics':
             return {'topics': list(topics), 'types': list(topics.values())}
         if name == 'topics_for_type':

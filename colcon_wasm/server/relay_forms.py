@@ -57,7 +57,7 @@ class FormError(Exception):
 def normalize(type_name, kind='msg'):
     """Return ``pkg/msg/Name`` for ``pkg/Name`` (other names unchanged)."""
     parts = type_name.strip().split('/')
-    return '{}/{}/{}'.format(parts[0], kind, parts[1]) if len(parts) == 2 else type_name.strip()
+    return f'{parts[0]}/{kind}/{parts[1]}' if len(parts) == 2 else type_name.strip()
 
 
 def _now():
@@ -134,7 +134,7 @@ class CborWriter:
                 self.string(str(k))
                 self.value(x)
         else:
-            raise TypeError('CBOR cannot encode a {}'.format(type(v).__name__))
+            raise TypeError(f'CBOR cannot encode a {type(v).__name__}')
 
     def result(self):
         """Return the bytes written."""
@@ -199,16 +199,15 @@ class Forms:
             msg = _now()
         description = self.messages.get(full)
         if description is None:
-            raise FormError("field '{}': type {} has no type description".format(
-                path or '.', full))
+            raise FormError(f"field '{path or '.'}': type {full} has no type description")
         if not isinstance(msg, dict):
-            raise FormError("field '{}': expected a JSON object for {}, got {}".format(
-                path or '.', full, type(msg).__name__))
+            raise FormError(f"field '{path or '.'}': expected a JSON object for {full}, got "
+                            f'{type(msg).__name__}')
         fields = description.get('fields', [])
         w.head(5, len(fields))
         for f in fields:
             name = f['name']
-            p = path + '.' + name if path else name
+            p = f'{path}.{name}' if path else name
             w.string(name)
             if name in msg:
                 value = msg[name]
@@ -243,25 +242,25 @@ class Forms:
                 items = _list(value, kind, path)
                 fmt = NUMERIC[kind]
                 try:
-                    data = struct.pack('<{}{}'.format(len(items), fmt), *[
+                    data = struct.pack(f'<{len(items)}{fmt}', *[
                         _float(x, kind, path) if kind in FLOATS else _int(x, kind, path)
                         for x in items])
                 except struct.error as e:
-                    raise FormError("field '{}': {} does not fit {}".format(path, e, kind))
+                    raise FormError(f"field '{path}': {e} does not fit {kind}")
                 w.head(6, TAGS[kind])
                 w.byte_string(data)
             else:
                 items = _list(value, kind, path)
                 w.head(4, len(items))
                 for i, x in enumerate(items):
-                    self._one(w, kind, x, '{}[{}]'.format(path, i))
+                    self._one(w, kind, x, f'{path}[{i}]')
             return
         self._one(w, kind, value, path)
 
     def _one(self, w, kind, v, path):
         if kind in ('string', 'wstring'):
             if not isinstance(v, str):
-                raise FormError("field '{}': expected a string".format(path))
+                raise FormError(f"field '{path}': expected a string")
             w.string(v)
         elif kind == 'bool':
             w.out.write(b'\xf5' if v else b'\xf4')
@@ -279,7 +278,7 @@ class Forms:
 
 def _list(value, kind, path):
     if not isinstance(value, (list, tuple)):
-        raise FormError("field '{}': expected an array of {}".format(path, kind))
+        raise FormError(f"field '{path}': expected an array of {kind}")
     return value
 
 
@@ -290,32 +289,31 @@ def _bytes(value, kind, path):
         try:
             return base64.b64decode(value, validate=True)
         except ValueError:
-            raise FormError("field '{}': expected base64 text or an array of {}".format(
-                path, kind)) from None
+            raise FormError(f"field '{path}': expected base64 text or an array of "
+                            f'{kind}') from None
     try:
         return bytes(_int(x, kind, path) for x in _list(value, kind, path))
     except ValueError:
-        raise FormError("field '{}': an element does not fit {}".format(path, kind)) from None
+        raise FormError(f"field '{path}': an element does not fit {kind}") from None
 
 
 def _int(v, kind, path):
     if isinstance(v, bool):
-        raise FormError("field '{}': expected an integer ({}), got a boolean".format(path, kind))
+        raise FormError(f"field '{path}': expected an integer ({kind}), got a boolean")
     if isinstance(v, int):
         return v
     if isinstance(v, float) and v.is_integer():
         return int(v)
     if isinstance(v, str) and v.strip().lstrip('-').isdigit():
         return int(v)
-    raise FormError("field '{}': expected an integer ({}), got {}".format(
-        path, kind, json.dumps(v)[:40]))
+    raise FormError(f"field '{path}': expected an integer ({kind}), got {json.dumps(v)[:40]}")
 
 
 def _float(v, kind, path):
     if v is None:
         return math.nan
     if isinstance(v, bool) or not isinstance(v, (int, float)):
-        raise FormError("field '{}': expected a number ({})".format(path, kind))
+        raise FormError(f"field '{path}': expected a number ({kind})")
     return float(v)
 
 
@@ -371,11 +369,11 @@ def decode_request(data):
     try:
         value = cbor2.CBORDecoder(stream).decode()
     except (cbor2.CBORDecodeError, EOFError, ValueError, TypeError, OverflowError) as e:
-        raise ValueError('a binary message is not CBOR ({}); the relay reads rosbridge '
-                         'requests as JSON text or CBOR'.format(e)) from None
+        raise ValueError(f'a binary message is not CBOR ({e}); the relay reads '
+                         'rosbridge requests as JSON text or CBOR') from None
     if stream.tell() != len(data):
-        raise ValueError('a binary message is not one CBOR item: {} bytes follow it'.format(
-            len(data) - stream.tell()))
+        raise ValueError(f'a binary message is not one CBOR item: {len(data) - stream.tell()} '
+                         'bytes follow it')
     return value
 
 
@@ -392,11 +390,11 @@ def jsonable(value):
         if fmt and isinstance(value.value, bytes):
             size = struct.calcsize(fmt)
             if len(value.value) % size:
-                raise ValueError('a typed array of tag {} has {} bytes, not a multiple of '
-                                 '{}'.format(value.tag, len(value.value), size))
+                raise ValueError(f'a typed array of tag {value.tag} has {len(value.value)} '
+                                 f'bytes, not a multiple of {size}')
             if fmt == 'B':
                 return base64.b64encode(value.value).decode('ascii')
-            return list(struct.unpack('<{}{}'.format(len(value.value) // size, fmt),
+            return list(struct.unpack(f'<{len(value.value) // size}{fmt}',
                                       value.value))
         return jsonable(value.value)
     if isinstance(value, float) and not math.isfinite(value):

@@ -49,9 +49,9 @@ def upgrade(handler, relay, *, token=None, same_origin=False):
         origin = handler.headers.get('Origin')
         host = handler.headers.get('Host', '')
         if origin is not None and urlsplit(origin).netloc != host:
-            _refuse(handler, 403, 'only the pages of this colcon-wasm serve may use {}; other '
-                                  'rosbridge clients connect to the --rosbridge port'.format(
-                                      RELAY_PATH))
+            _refuse(handler, 403, 'only the pages of this colcon-wasm serve may use '
+                                  f'{RELAY_PATH}; other '
+                                  'rosbridge clients connect to the --rosbridge port')
             return
     if token and not hmac.compare_digest(_token(handler), token):
         _refuse(handler, 401, 'this rosbridge relay needs a token: connect to '
@@ -65,7 +65,7 @@ def upgrade(handler, relay, *, token=None, same_origin=False):
     handler.connection.sendall(response)
     handler.close_connection = True
     host, port = handler.client_address[:2]
-    relay.serve(handler.connection, '{}:{}'.format(host, port))
+    relay.serve(handler.connection, f'{host}:{port}')
 
 
 class RelayRequestHandler(BaseHTTPRequestHandler):
@@ -108,14 +108,15 @@ class RelayServer(ThreadingHTTPServer):
         except OSError as e:
             if e.errno == errno.EADDRINUSE:
                 raise ServeError(
-                    'port {} on {} is already in use (another rosbridge server, or another '
+                    f'port {port} on {host} is already in use (another rosbridge server, or '
+                    'another '
                     'server?): stop it, or pass --rosbridge HOST:PORT (port 0 picks a free '
-                    'port)'.format(port, host)) from None
-            raise ServeError('cannot listen on {}:{} for --rosbridge: {}'.format(
-                host, port, e.strerror or e)) from None
+                    'port)') from None
+            raise ServeError(f'cannot listen on {host}:{port} for --rosbridge: '
+                             f'{e.strerror or e}') from None
 
     @property
     def url(self):
         """Return ws://host:port of the relay."""
         host, port = self.server_address[:2]
-        return 'ws://{}:{}'.format('[{}]'.format(host) if ':' in host else host, port)
+        return f"ws://{(f'[{host}]' if ':' in host else host)}:{port}"

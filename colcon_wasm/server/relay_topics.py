@@ -68,7 +68,7 @@ class Message:
                                     separators=(',', ':'))
         if ttl is None:
             return self._text
-        return '{},"ttl":{}}}'.format(self._text[:-1], ttl)
+        return f'{self._text[:-1]},"ttl":{ttl}}}'
 
     def cbor(self, forms, ttl):
         """Return the cbor ``publish`` (FormError when the type is not described)."""
@@ -231,18 +231,18 @@ class Topics:
                 peer.send(m.cbor(self.relay.forms, ttl))
                 return
             except FormError as e:
-                self._warn(sub, 'cbor', 'cannot build the cbor form of a message of {} ({}): {}; '
-                                        'it is sent as JSON'.format(sub.topic, m.type, e))
+                self._warn(sub, 'cbor', f'cannot build the cbor form of a message of {sub.topic} '
+                                        f'({m.type}): {e}; it is sent as JSON')
         elif compression == 'cbor-raw' and peer.version < 2:
-            self._warn(sub, 'cbor-raw', 'the publisher of {} gives no CDR form (it publishes '
-                                        'JSON), so the relay forwards its messages as JSON '
-                                        '(compression none)'.format(sub.topic))
+            self._warn(sub, 'cbor-raw', f'the publisher of {sub.topic} gives no CDR form (it '
+                                        'publishes JSON), so the relay forwards its messages as '
+                                        'JSON (compression none)')
         text = m.text(ttl)
         if compression == 'png':
             text = png_message(text)
         fid = None
         if sub.fragment_size and len(text) > sub.fragment_size:
-            fid = 'fragment:relay:{}:{}'.format(peer.number, next(self._fragment_ids))
+            fid = f'fragment:relay:{peer.number}:{next(self._fragment_ids)}'
         for part in fragments(text, sub.fragment_size, fid):
             peer.send(part)
 

@@ -86,7 +86,7 @@ class Site:
         self.relay_path = None
         self.runtime_origin = runtime_origin
         self.runtime_entry = runtime_entry
-        self.title = title or 'colcon-wasm: {}'.format(install_space.base.parent.name)
+        self.title = title or f'colcon-wasm: {install_space.base.parent.name}'
         self.environment = jinja2.Environment(
             loader=jinja2.FileSystemLoader(str(self.launcher_dir)),
             autoescape=True, undefined=jinja2.StrictUndefined)
@@ -157,7 +157,7 @@ class Site:
         return self.install_space.base
 
     def _url(self, package, path):
-        return '/ws/{}/{}'.format(package.name, Path(path).relative_to(package.prefix).as_posix())
+        return f'/ws/{package.name}/{Path(path).relative_to(package.prefix).as_posix()}'
 
     def _allowed_files(self):
         """Return ``{(pkg, relative path)}`` of servable install files."""

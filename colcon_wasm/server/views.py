@@ -63,7 +63,7 @@ class InstallViews:
 
     def mounts(self):
         """Describe the views for ``Runtime.spawn({mounts})``: ``[{path, url}]``."""
-        return [{'path': str(base), 'url': '/{}/{}'.format(URL_PREFIX, number)}
+        return [{'path': str(base), 'url': f'/{URL_PREFIX}/{number}'}
                 for number, base in enumerate(self.bases)]
 
     def content(self, number, segments, directory, walk=None):
@@ -82,19 +82,19 @@ class InstallViews:
         real = self._resolve(base, segments)
         if directory:
             if not real.is_dir():
-                raise Refused(404, "'{}' in install base {} is not a directory".format(
-                    relative, number))
+                raise Refused(404, f"'{relative}' in install base {number} is not a directory")
             return 'listing', json.dumps(self._listing(base, real, segments)).encode()
         if not real.is_file():
-            raise Refused(404, "'{}' in install base {} is not a file (list a directory with "
-                               'a trailing slash)'.format(relative or '.', number))
+            raise Refused(404, f"'{relative or '.'}' in install base {number} is not a file (list "
+                               'a directory with '
+                               'a trailing slash)')
         return 'file', real
 
     def _base(self, number):
         if not number.isdigit() or int(number) >= len(self.bases):
-            raise Refused(404, 'no install base {!r}: this server has {} ({})'.format(
-                number, len(self.bases), ', '.join(
-                    '/{}/{}/ = {}'.format(URL_PREFIX, n, b) for n, b in enumerate(self.bases))))
+            bases = ', '.join(f'/{URL_PREFIX}/{n}/ = {b}' for n, b in enumerate(self.bases))
+            raise Refused(
+                404, f'no install base {number!r}: this server has {len(self.bases)} ({bases})')
         return self.bases[int(number)]
 
     def _resolve(self, base, segments):
@@ -103,17 +103,17 @@ class InstallViews:
             root_real = base.resolve(strict=True)
             real = root_real.joinpath(*segments).resolve(strict=True)
         except (OSError, RuntimeError):  # missing, not a directory on the way, link loops
-            raise Refused(404, "'{}' is not in the install space '{}'".format(
-                '/'.join(segments), base)) from None
+            raise Refused(404, f"'{'/'.join(segments)}' is not in the install space "
+                               f"'{base}'") from None
         if not _inside(root_real, real):
-            raise Refused(404, "'{}' leads out of the install space '{}' (a symbolic link): "
-                               'not served'.format('/'.join(segments), base))
+            raise Refused(404, f"'{'/'.join(segments)}' leads out of the install space '{base}' "
+                               '(a symbolic link): '
+                               'not served')
         return real
 
     def _walks(self, base, segments, walk):
         if not walk.isdigit():
-            raise Refused(404, 'walk={!r}: give the number of leading directories to skip'.format(
-                walk))
+            raise Refused(404, f'walk={walk!r}: give the number of leading directories to skip')
         listings = self._walk(base, segments, int(walk))
         if len(segments) > len(RESOURCE_INDEX_PARTS) and \
                 segments[1:1 + len(RESOURCE_INDEX_PARTS)] == RESOURCE_INDEX_PARTS:

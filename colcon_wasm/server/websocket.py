@@ -18,11 +18,13 @@ import queue
 import struct
 import threading
 
+from colcon_wasm.error import ColconWasmError
+
 GUID = '258EAFA5-E914-47DA-95CA-C5AB0DC85B11'
 TEXT, BINARY, CLOSE, PING, PONG = 0x1, 0x2, 0x8, 0x9, 0xA
 
 
-class WebSocketError(Exception):
+class WebSocketError(ColconWasmError):
     """The peer broke the protocol; ``code`` is the close code to send."""
 
     def __init__(self, code, message):  # noqa: D107
@@ -46,7 +48,7 @@ def handshake_response(headers):
     if 'websocket' not in (headers.get('Upgrade') or '').lower() or not key:
         return None
     return ('HTTP/1.1 101 Switching Protocols\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n'
-            'Sec-WebSocket-Accept: {}\r\n\r\n'.format(accept_key(key.strip()))).encode('ascii')
+            f'Sec-WebSocket-Accept: {accept_key(key.strip())}\r\n\r\n').encode('ascii')
 
 
 def encode_frame(opcode, payload):

@@ -12,12 +12,12 @@ from colcon_core.plugin_system import satisfies_version
 from colcon_core.task import get_task_extension
 from colcon_core.task import TaskExtensionPoint
 from colcon_wasm import debian_source
+from colcon_wasm.build_plan import PLAN_KEY
 from colcon_wasm.error import ColconWasmError
 from colcon_wasm.error import exit_message
 from colcon_wasm.link.report import stale_links
 from colcon_wasm.options import cmake_arguments
 from colcon_wasm.patch import prepare_patched_source
-from colcon_wasm.plan import PLAN_KEY
 from colcon_wasm.postprocess import postprocess_package
 from colcon_wasm.task.stamp import build_inputs
 from colcon_wasm.task.stamp import is_up_to_date

@@ -16,7 +16,7 @@ from colcon_core.shell import get_command_environment
 from colcon_core.subprocess import check_output
 from colcon_core.task import get_task_extension
 from colcon_core.task import TaskExtensionPoint
-from colcon_wasm.plan import PLAN_KEY
+from colcon_wasm.build_plan import PLAN_KEY
 from colcon_wasm.testing import results
 
 logger = colcon_logger.getChild(__name__)

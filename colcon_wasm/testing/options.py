@@ -8,9 +8,6 @@ from colcon_wasm import resources
 """The recipe overlay applied with `--wasm-tests` (before the user's)."""
 TESTS_RECIPE = 'humble-tests.yaml'
 
-"""Default time limit (s) of a test that sets none (ament tests set 60)."""
-DEFAULT_TEST_TIMEOUT = 300
-
 """ament's linters: Python tools that check sources, not WebAssembly code."""
 AMENT_LINTERS = (
     'ament_cmake_clang_format', 'ament_cmake_clang_tidy', 'ament_cmake_copyright',
@@ -20,8 +17,16 @@ AMENT_LINTERS = (
     'ament_cmake_uncrustify', 'ament_cmake_xmllint')
 
 
+def _default_timeout():
+    """Get the time limit (s) of a test that sets none (ament tests set 60)."""
+    # the one table of --wasm defaults (it adds these options: imported here)
+    from colcon_wasm.options import DEFAULTS
+    return DEFAULTS['wasm_test_timeout']
+
+
 def add_wasm_test_arguments(parser):
     """Add the `--wasm-tests*` options to a colcon verb's parser."""
+    default_timeout = _default_timeout()
     parser.add_argument(
         '--wasm-tests', nargs='*', metavar='PKG', default=None,
         help='Build tests (BUILD_TESTING=ON) for `colcon test --wasm`: of the '
@@ -35,9 +40,9 @@ def add_wasm_test_arguments(parser):
              'failures (RCUTILS_FAULT_INJECTION_TEST)')
     parser.add_argument(
         '--wasm-test-timeout', type=_timeout, metavar='SECONDS',
-        default=DEFAULT_TEST_TIMEOUT,
+        default=default_timeout,
         help='colcon test --wasm: time limit of a test that sets none '
-             f'(default: {DEFAULT_TEST_TIMEOUT}); a test over its limit is '
+             f'(default: {default_timeout}); a test over its limit is '
              'stopped and reported as timed out')
 
 
@@ -65,7 +70,7 @@ class TestSettings:
         self.packages = set(names or ())
         self.fault_injection = bool(getattr(args, 'wasm_fault_injection', False))
         self.timeout = float(getattr(args, 'wasm_test_timeout', None)
-                             or DEFAULT_TEST_TIMEOUT)
+                             or _default_timeout())
 
     def tests_of(self, pkg_name, rule):
         """

@@ -17,7 +17,7 @@ import os
 from pathlib import Path
 
 from colcon_wasm.error import ColconWasmError
-from colcon_wasm.error import exit_message
+from colcon_wasm.error import exit_on_error
 from colcon_wasm.underlay import get_underlays
 from colcon_wasm.underlay import read_marker
 from colcon_wasm.underlay import split_native_prefixes
@@ -38,22 +38,18 @@ def prepare_test_verb(args):
     :raises SystemExit: when the install base was not built with `--wasm`
     """
     install_base = Path(getattr(args, 'install_base', None) or 'install_wasm').absolute()
-    try:
+    with exit_on_error(COMMAND):
         marker = read_marker(install_base)
-    except ColconWasmError as e:
-        raise SystemExit(exit_message(e, command=COMMAND)) from e
-    if marker is None:
-        raise SystemExit(exit_message(ColconWasmError(
-            f"'{install_base}' was not built with colcon build --wasm: build the "
-            'packages and their tests first (colcon build --wasm --wasm-tests PKG...), '
-            'or pass the --install-base of that build'), command=COMMAND))
+        if marker is None:
+            raise ColconWasmError(
+                f"'{install_base}' was not built with colcon build --wasm: build the "
+                'packages and their tests first (colcon build --wasm --wasm-tests PKG...), '
+                'or pass the --install-base of that build')
     # the underlays it was built on (colcon_wasm.underlay.get_underlays)
     underlays = get_underlays(args)
     kept, removed = split_native_prefixes(os.environ)
     if removed:
         os.environ.update(kept)
-    try:
+    with exit_on_error(COMMAND):
         os.environ.update(underlay_environment(underlays, os.environ))
-    except ColconWasmError as e:
-        raise SystemExit(exit_message(e, command=COMMAND)) from e
     return underlays

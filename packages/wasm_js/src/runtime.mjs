@@ -261,6 +261,39 @@ function startHostWorker() {
     isNode ? siblingUrl('node_host.mjs') : siblingUrl('web_host.js'), { name: 'wasm_js host', type: 'classic' });
 }
 
+/**
+ * Warm pthread workers where no manifest says what the install space was built
+ * with (a source checkout, a page served without it): colcon-wasm's default
+ * `--wasm-pthread-pool-size` (colcon_wasm/options.py).
+ */
+const FALLBACK_PTHREAD_POOL_SIZE = 4;
+
+/**
+ * The pthread pool size this runtime's install space was built with: the
+ * `flags.pthread_pool_size` of wasm_js's own colcon-wasm manifest
+ * (`share/wasm_js/colcon_wasm/manifest.json` beside `src/`; 0 for a build
+ * without pthreads).
+ * @returns {Promise<number|null>} null when no manifest can be read
+ */
+async function builtPthreadPoolSize() {
+  const url = new URL('../colcon_wasm/manifest.json', import.meta.url);
+  try {
+    let text;
+    if (isNode && url.protocol === 'file:') {
+      const { readFile } = await import('node:fs/promises');
+      text = await readFile(url, 'utf8');
+    } else {
+      const response = await fetch(url);
+      if (!response.ok) return null;
+      text = await response.text();
+    }
+    const size = JSON.parse(text).flags.pthread_pool_size;
+    return Number.isInteger(size) && size >= 0 ? size : null;
+  } catch (e) {
+    return null; // no manifest: the fallback
+  }
+}
+
 export class Runtime {
   /**
    * What this runtime offers beyond the first release, for callers that may
@@ -282,9 +315,10 @@ export class Runtime {
    * @param {number} [options.maxEndpoints] @param {number} [options.maxLinks]
    * @param {number} [options.warmHosts=1] idle host workers kept ready (runtime modules
    *   loaded), so that spawn() does not wait for a worker to boot
-   * @param {number} [options.warmPthreadWorkers=4] pthread workers each warm host boots
-   *   ahead for a pthread program's pool (colcon-wasm's default
-   *   `-sPTHREAD_POOL_SIZE`); 0: none (a program then boots its own)
+   * @param {number} [options.warmPthreadWorkers] pthread workers each warm host boots
+   *   ahead for a pthread program's pool; default: the `-sPTHREAD_POOL_SIZE` the
+   *   install space was built with (its manifest), else 4; 0: none (a program then
+   *   boots its own)
    * @param {boolean} [options.wasmMemory=true] false: the bus is a SharedArrayBuffer
    *   even where it could be a WebAssembly.Memory copied to with memory.copy
    *   (for comparisons; see copier.mjs)
@@ -298,6 +332,10 @@ export class Runtime {
     if (typeof Atomics.waitAsync !== 'function') {
       throw new BusError(Code.UNSUPPORTED,
         'this JavaScript engine lacks Atomics.waitAsync, which the runtime needs to watch the bus without blocking the page (use Chromium >= 87 or Node.js >= 16)');
+    }
+    if (options.warmPthreadWorkers === undefined) {
+      const built = await builtPthreadPoolSize();
+      options = { ...options, warmPthreadWorkers: built === null ? FALLBACK_PTHREAD_POOL_SIZE : built };
     }
     const bus = Bus.create(options);
     if (!bus.tryLock(1)) throw new BusError(Code.ERROR, 'a new bus is already locked');
@@ -321,7 +359,8 @@ export class Runtime {
     this._tools = null;
     /** Warm hosts: started workers with the runtime modules loaded, waiting for a spawn. */
     this._warm = options.warmHosts === undefined ? 1 : options.warmHosts;
-    this._warmPthreadWorkers = options.warmPthreadWorkers === undefined ? 4 : options.warmPthreadWorkers;
+    this._warmPthreadWorkers = options.warmPthreadWorkers === undefined
+      ? FALLBACK_PTHREAD_POOL_SIZE : options.warmPthreadWorkers;
     this._spares = [];
     this._fillSpares();
   }

@@ -19,10 +19,10 @@ def main():
         future = client.call_async(AddTwoInts.Request(a=a, b=2 * a))
         rclpy.spin_until_future_complete(node, future, timeout_sec=10.0)
         if not future.done():
-            node.get_logger().error('no response for a={}'.format(a))
+            node.get_logger().error(f'no response for a={a}')
             sys.exit(4)
-        node.get_logger().info('Result of add_two_ints: for {} + {} = {}'.format(
-            a, 2 * a, future.result().sum))
+        node.get_logger().info(f'Result of add_two_ints: for {a} + {2 * a} = '
+                               f'{future.result().sum}')
     rclpy.shutdown()
 
 

@@ -12,7 +12,7 @@ def main():
 
     def add(request, response):
         response.sum = request.a + request.b
-        node.get_logger().info('Incoming request: a: {} b: {}'.format(request.a, request.b))
+        node.get_logger().info(f'Incoming request: a: {request.a} b: {request.b}')
         return response
 
     node.create_service(AddTwoInts, 'add_two_ints', add)

@@ -11,7 +11,7 @@ def main():
     node = Node('py_listener')
 
     def heard(msg):
-        node.get_logger().info('I heard: [{}] count={}'.format(msg.data, msg.count))
+        node.get_logger().info(f'I heard: [{msg.data}] count={msg.count}')
 
     node.create_subscription(Chatter, 'chatter', heard, 10)
     rclpy.spin(node)

@@ -30,7 +30,8 @@ assert node.declare_parameter('rate', 1.0).value == 2.5
 assert node.declare_parameter('label', 'x').value == 'hi'
 assert node.declare_parameter('count', 3).type_ == Parameter.Type.INTEGER
 node.add_on_set_parameters_callback(
-    lambda ps: SetParametersResult(successful=all(p.value != 13 for p in ps), reason='13 is unlucky'))
+    lambda ps: SetParametersResult(successful=all(p.value != 13 for p in ps),
+                                   reason='13 is unlucky'))
 results = node.set_parameters([Parameter('count', value=4), Parameter('count', value=13)])
 assert [r.successful for r in results] == [True, False] and results[1].reason == '13 is unlucky'
 assert node.get_parameter('count').value == 4
@@ -50,7 +51,8 @@ assert Frame.get_fields_and_field_types()['data'] == 'sequence<uint8>'
 assert isinstance(Frame().data, array.array) and Frame().data.typecode == 'B'
 assert Sample().sine == 0.0 and String(data='x').data == 'x'
 expect_assertion(lambda: Chatter(data=3), "The 'data' field must be of type 'str'")
-expect_assertion(lambda: Chatter(count=-1), "The 'count' field must be an unsigned integer in [0, 4294967295]")
+expect_assertion(lambda: Chatter(count=-1), "The 'count' field must be an unsigned integer in "
+                                            '[0, 4294967295]')
 expect_assertion(lambda: Sample(sine=1), "The 'sine' field must be of type 'float'")
 expect_assertion(lambda: Chatter(nope=1), 'Invalid arguments passed to constructor: nope')
 try:

@@ -16,8 +16,8 @@ class Talker(Node):
 
     def tick(self):
         self.count += 1
-        msg = Chatter(data='Hello from Python: {}'.format(self.count), count=self.count)
-        self.get_logger().info('Publishing: "{}"'.format(msg.data))
+        msg = Chatter(data=f'Hello from Python: {self.count}', count=self.count)
+        self.get_logger().info(f'Publishing: "{msg.data}"')
         self.publisher.publish(msg)
 
 

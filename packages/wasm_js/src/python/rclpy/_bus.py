@@ -16,8 +16,7 @@ try:
 except ImportError as e:  # pragma: no cover - outside the runtime
     raise ImportError(
         "this rclpy runs only inside colcon-wasm's Python host (Pyodide in a bus "
-        "worker): run the script with 'colcon-wasm run --python FILE.py' "
-        '({})'.format(e)) from None
+        f"worker): run the script with 'colcon-wasm run --python FILE.py' ({e})") from None
 
 
 def plain_to_js(value):

@@ -57,7 +57,7 @@ def packages():
 def _normalize(name):
     parts = name.split('/')
     if len(parts) == 2:
-        return '{}/msg/{}'.format(*parts)
+        return f'{parts[0]}/msg/{parts[1]}'
     return name
 
 
@@ -66,27 +66,27 @@ def _check_scalar(field, value, name):
     kind = field['type']
     if kind == 'bool':
         assert isinstance(value, bool), \
-            "The '{}' field must be of type 'bool'".format(name)
+            f"The '{name}' field must be of type 'bool'"
     elif kind in ('string', 'wstring'):
         assert isinstance(value, str), \
-            "The '{}' field must be of type 'str'".format(name)
+            f"The '{name}' field must be of type 'str'"
         bound = field.get('string_bound')
         assert bound is None or len(value) <= bound, \
-            "The '{}' field must be string with length <= {}".format(name, bound)
+            f"The '{name}' field must be string with length <= {bound}"
     elif kind in _FLOATS:
         assert isinstance(value, float), \
-            "The '{}' field must be of type 'float'".format(name)
+            f"The '{name}' field must be of type 'float'"
     elif kind in _INT_RANGES:
         assert isinstance(value, int) and not isinstance(value, bool), \
-            "The '{}' field must be of type 'int'".format(name)
+            f"The '{name}' field must be of type 'int'"
         low, high = _INT_RANGES[kind]
         what = 'an unsigned' if low == 0 else 'a'
         assert low <= value <= high, \
-            "The '{}' field must be {} integer in [{}, {}]".format(name, what, low, high)
+            f"The '{name}' field must be {what} integer in [{low}, {high}]"
     else:
         cls = message_class(_normalize(kind))
         assert isinstance(value, cls), \
-            "The '{}' field must be a sub message of type '{}'".format(name, cls.__name__)
+            f"The '{name}' field must be a sub message of type '{cls.__name__}'"
     return value
 
 
@@ -95,15 +95,15 @@ def _check(field, value):
     if 'array_size' not in field and not field.get('sequence'):
         return _check_scalar(field, value, name)
     assert isinstance(value, (list, tuple, array.array)), \
-        "The '{}' field must be a set or sequence".format(name)
+        f"The '{name}' field must be a set or sequence"
     size = field.get('array_size')
     bound = field.get('sequence_bound')
     if size is not None:
         assert len(value) == size, \
-            "The '{}' field must have exactly {} elements".format(name, size)
+            f"The '{name}' field must have exactly {size} elements"
     if bound is not None:
         assert len(value) <= bound, \
-            "The '{}' field must have at most {} elements".format(name, bound)
+            f"The '{name}' field must have at most {bound} elements"
     for element in value:
         _check_scalar(field, element, name)
     code = _TYPECODES.get(field['type'])
@@ -179,14 +179,14 @@ class Message:
         """Set the fields given, the others to their defaults."""
         names = {f['name'] for f in self._fields}
         assert all(k in names for k in kwargs), \
-            'Invalid arguments passed to constructor: %s' % ', '.join(
-                sorted(k for k in kwargs if k not in names))
+            ('Invalid arguments passed to constructor: '
+             f"{', '.join(sorted((k for k in kwargs if k not in names)))}")
         for field in self._fields:
             name = field['name']
             if name in kwargs:
                 setattr(self, name, kwargs[name])
             else:
-                object.__setattr__(self, '_' + name, _default(field))
+                object.__setattr__(self, f'_{name}', _default(field))
 
     @classmethod
     def get_fields_and_field_types(cls):
@@ -195,10 +195,10 @@ class Message:
         for field in cls._fields:
             kind = field['type']
             if field.get('array_size') is not None:
-                kind = '{}[{}]'.format(kind, field['array_size'])
+                kind = f"{kind}[{field['array_size']}]"
             elif field.get('sequence'):
                 bound = field.get('sequence_bound')
-                kind = 'sequence<{}{}>'.format(kind, ', {}'.format(bound) if bound else '')
+                kind = f"sequence<{kind}{(f', {bound}' if bound else '')}>"
             result[field['name']] = kind
         return result
 
@@ -211,18 +211,18 @@ class Message:
     def __repr__(self):
         """``pkg.msg.Name(field=value, ...)``."""
         module = self.__class__.__module__
-        args = ', '.join('{}={!r}'.format(f['name'], getattr(self, f['name']))
+        args = ', '.join(f"{f['name']}={getattr(self, f['name'])!r}"
                          for f in self._fields)
-        return '{}.{}({})'.format(module, self.__class__.__name__, args)
+        return f'{module}.{self.__class__.__name__}({args})'
 
     def _to_plain(self):
-        return {f['name']: _to_plain(f, getattr(self, '_' + f['name'])) for f in self._fields}
+        return {f['name']: _to_plain(f, getattr(self, f"_{f['name']}")) for f in self._fields}
 
     @classmethod
     def _from_plain(cls, plain):
         msg = cls.__new__(cls)
         for field in cls._fields:
-            object.__setattr__(msg, '_' + field['name'], _from_plain(field, plain[field['name']]))
+            object.__setattr__(msg, f"_{field['name']}", _from_plain(field, plain[field['name']]))
         return msg
 
 
@@ -230,22 +230,22 @@ def _property(field):
     name = field['name']
 
     def getter(self):
-        return getattr(self, '_' + name)
+        return getattr(self, f'_{name}')
 
     def setter(self, value):
-        object.__setattr__(self, '_' + name, _check(field, value))
+        object.__setattr__(self, f'_{name}', _check(field, value))
 
-    return property(getter, setter, doc='Message field {!r}.'.format(name))
+    return property(getter, setter, doc=f'Message field {name!r}.')
 
 
 def _make_class(full, description, module):
     pkg, kind, name = full.split('/')
     namespace = {
-        '__slots__': tuple('_' + f['name'] for f in description['fields']),
+        '__slots__': tuple(f"_{f['name']}" for f in description['fields']),
         '_fields': tuple(description['fields']),
         '_type': full,
         '__module__': module,
-        '__doc__': description.get('definition') or 'Message {}.'.format(full),
+        '__doc__': description.get('definition') or f'Message {full}.',
     }
     for field in description['fields']:
         namespace[field['name']] = _property(field)
@@ -262,13 +262,13 @@ def message_class(full):
         description = _descriptions.get('messages', {}).get(full)
         if description is None:
             pkg = full.split('/')[0]
-            hint = ("package '{}' has type descriptions, but not this message".format(pkg)
+            hint = (f"package '{pkg}' has type descriptions, but not this message"
                     if pkg in packages() else
-                    "no types.json of package '{}' is loaded: build '{}' with "
-                    'colcon build --wasm into this install space'.format(pkg, pkg))
-            raise ImportError('unknown message type {!r}: {}'.format(full, hint))
+                    f"no types.json of package '{pkg}' is loaded: build '{pkg}' with colcon "
+                    'build --wasm into this install space')
+            raise ImportError(f'unknown message type {full!r}: {hint}')
         pkg, kind, name = full.split('/')
-        cls = _make_class(full, description, '{}.{}'.format(pkg, kind))
+        cls = _make_class(full, description, f'{pkg}.{kind}')
         _classes[full] = cls
     return cls
 
@@ -279,15 +279,15 @@ def service_class(full):
     if cls is None:
         description = _descriptions.get('services', {}).get(full)
         if description is None:
-            raise ImportError('unknown service type {!r}: build its package with '
-                              'colcon build --wasm into this install space'.format(full))
+            raise ImportError(f'unknown service type {full!r}: build its package with colcon '
+                              'build --wasm into this install space')
         pkg, kind, name = full.split('/')
         cls = type(name, (), {
             'Request': message_class(description['request']),
             'Response': message_class(description['response']),
             '_type': full,
-            '__module__': '{}.{}'.format(pkg, kind),
-            '__doc__': description.get('definition') or 'Service {}.'.format(full),
+            '__module__': f'{pkg}.{kind}',
+            '__doc__': description.get('definition') or f'Service {full}.',
         })
         _classes[full] = cls
     return cls
@@ -297,8 +297,8 @@ def type_name(msg_type):
     """Return the ROS type name of a generated message or service class."""
     name = getattr(msg_type, '_type', None)
     if not name:
-        raise TypeError('{!r} is not a message or service class of this rclpy (import it '
-                        'from <package>.msg or <package>.srv)'.format(msg_type))
+        raise TypeError(f'{msg_type!r} is not a message or service class of this rclpy (import '
+                        'it from <package>.msg or <package>.srv)')
     return name
 
 
@@ -320,7 +320,7 @@ class _InterfaceFinder(importlib.abc.MetaPathFinder, importlib.abc.Loader):
             module.__path__ = []
             return module
         pkg, kind = parts
-        prefix = '{}/{}/'.format(pkg, kind)
+        prefix = f'{pkg}/{kind}/'
         table = _descriptions.get('messages', {}) if kind in ('msg', 'srv') else {}
         for full in sorted(table):
             if full.startswith(prefix):

@@ -46,8 +46,8 @@ class Context:
 
     def _check_ok(self, what):
         if not self._ok:
-            raise RuntimeError('cannot {}: call rclpy.init() first (or the context '
-                               'was shut down)'.format(what))
+            raise RuntimeError(f'cannot {what}: call rclpy.init() first (or the context was '
+                               'shut down)')
 
     def parameter_overrides(self, node_name, cli_args=None):
         """Return the ``-p [node:]name:=value`` values of the ROS arguments for a node."""

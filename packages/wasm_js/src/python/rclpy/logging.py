@@ -29,7 +29,7 @@ class RcutilsLogger:
 
     def get_child(self, name):
         """Return the logger ``<this>.<name>``."""
-        return RcutilsLogger('{}.{}'.format(self.name, name) if self.name else name)
+        return RcutilsLogger(f'{self.name}.{name}' if self.name else name)
 
     def set_level(self, level):
         """Set the lowest severity logged."""
@@ -49,8 +49,7 @@ class RcutilsLogger:
         if not self.is_enabled_for(level):
             return False
         now = time.time_ns()
-        line = '[{}] [{}.{:09d}] [{}]: {}'.format(
-            level.name, now // 10 ** 9, now % 10 ** 9, self.name, message)
+        line = f'[{level.name}] [{now // 10 ** 9}.{now % 10 ** 9:09d}] [{self.name}]: {message}'
         stream = sys.stderr if level >= LoggingSeverity.WARN else sys.stdout
         print(line, file=stream, flush=True)
         return True

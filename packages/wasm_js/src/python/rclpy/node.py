@@ -37,7 +37,7 @@ class Publisher:
     def publish(self, msg):
         """Publish a message (an instance of msg_type)."""
         if not isinstance(msg, self.msg_type):
-            raise TypeError('Expected {}, got {}'.format(self.msg_type, type(msg)))
+            raise TypeError(f'Expected {self.msg_type}, got {type(msg)}')
         bus.publish(self._handle, self._type_name, plain_to_js(msg._to_plain()))
 
     def get_subscription_count(self):
@@ -113,8 +113,8 @@ class Service:
         request = self.srv_type.Request._from_plain(taken.value.to_py())
         response = self.callback(request, self.srv_type.Response())
         if not isinstance(response, self.srv_type.Response):
-            raise TypeError('the callback of service {!r} returned {!r}, not a {}'.format(
-                self.srv_name, type(response), self.srv_type.Response))
+            raise TypeError(f'the callback of service {self.srv_name!r} returned '
+                            f'{type(response)!r}, not a {self.srv_type.Response}')
         bus.send_response(self._handle, taken.id, self._response,
                           plain_to_js(response._to_plain()))
         return True
@@ -143,7 +143,7 @@ class Client:
     def call_async(self, request):
         """Send a request; the Future completes while the node spins."""
         if not isinstance(request, self.srv_type.Request):
-            raise TypeError('Expected {}, got {}'.format(self.srv_type.Request, type(request)))
+            raise TypeError(f'Expected {self.srv_type.Request}, got {type(request)}')
         sequence = bus.send_request(self._handle, self._request, plain_to_js(request._to_plain()))
         future = Future()
         self._pending[int(sequence)] = future
@@ -180,7 +180,7 @@ class Timer:
     def __init__(self, callback, timer_period_sec):
         """Made by Node.create_timer; first call one period from now."""
         if timer_period_sec <= 0:
-            raise ValueError('timer period must be > 0, got {}'.format(timer_period_sec))
+            raise ValueError(f'timer period must be > 0, got {timer_period_sec}')
         self.callback = callback
         self.timer_period_ns = int(timer_period_sec * 1e9)
         self._period = timer_period_sec
@@ -241,12 +241,12 @@ class Clock:
 
 def _expand(name, namespace, node_name, what):
     if not name:
-        raise ValueError('{} name must not be empty'.format(what))
+        raise ValueError(f'{what} name must not be empty')
     if name.startswith('~'):
-        base = namespace.rstrip('/') + '/' + node_name
+        base = f"{namespace.rstrip('/')}/{node_name}"
         name = base + name[1:]
     elif not name.startswith('/'):
-        name = namespace.rstrip('/') + '/' + name
+        name = f"{namespace.rstrip('/')}/{name}"
     return name
 
 
@@ -262,7 +262,7 @@ class Node:
         node_name = remaps.get('__node', node_name)
         namespace = remaps.get('__ns', namespace) or '/'
         if not namespace.startswith('/'):
-            namespace = '/' + namespace
+            namespace = f'/{namespace}'
         if len(namespace) > 1:
             namespace = namespace.rstrip('/')
         self._remaps = remaps
@@ -270,7 +270,7 @@ class Node:
         self._namespace = namespace
         self._handle = bus.create_node(node_name, namespace, self.context.domain_id)
         self._logger = RcutilsLogger(node_name if namespace == '/' else
-                                     namespace.strip('/').replace('/', '.') + '.' + node_name)
+                                     f"{namespace.strip('/').replace('/', '.')}.{node_name}")
         self._clock = Clock()
         self.publishers = []
         self.subscriptions = []
@@ -292,7 +292,7 @@ class Node:
 
     def get_fully_qualified_name(self):
         """Return ``/ns/name``."""
-        return self._namespace.rstrip('/') + '/' + self._name
+        return f"{self._namespace.rstrip('/')}/{self._name}"
 
     def get_logger(self):
         """Return the node's logger."""
@@ -388,7 +388,7 @@ class Node:
 
     def declare_parameters(self, namespace, parameters):
         """Declare ``[(name, value), ...]`` under ``namespace.``."""
-        prefix = namespace + '.' if namespace else ''
+        prefix = f'{namespace}.' if namespace else ''
         return [self.declare_parameter(prefix + entry[0], *entry[1:2]) for entry in parameters]
 
     def has_parameter(self, name):
@@ -500,5 +500,5 @@ class InvalidParameterValueException(Exception):
 
     def __init__(self, name, value, reason):
         """Name the parameter, the value and the reason."""
-        super().__init__('Invalid parameter value ({}) for parameter. Reason: {}'.format(
-            value, reason), name)
+        super().__init__(f'Invalid parameter value ({value}) for parameter. Reason: '
+                         f'{reason}', name)

@@ -47,8 +47,7 @@ class Parameter:
                     return cls.DOUBLE_ARRAY
                 if all(isinstance(v, str) for v in value):
                     return cls.STRING_ARRAY
-            raise TypeError('The given value is not one of the allowed types '
-                            "'{}'.".format(value))
+            raise TypeError(f"The given value is not one of the allowed types '{value}'.")
 
     def __init__(self, name, type_=None, value=None):
         """Create a parameter; ``type_`` defaults to the value's."""
@@ -75,7 +74,7 @@ class Parameter:
 
     def __repr__(self):
         """Show name, type and value."""
-        return 'Parameter({!r}, {}, {!r})'.format(self._name, self._type.name, self._value)
+        return f'Parameter({self._name!r}, {self._type.name}, {self._value!r})'
 
 
 class SetParametersResult:

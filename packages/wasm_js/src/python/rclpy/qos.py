@@ -47,8 +47,8 @@ class QoSProfile:
 
     def __repr__(self):
         """Show the policies."""
-        return ('QoSProfile(history={}, depth={}, reliability={}, durability={})'.format(
-            self.history.name, self.depth, self.reliability.name, self.durability.name))
+        return (f'QoSProfile(history={self.history.name}, depth={self.depth}, '
+                f'reliability={self.reliability.name}, durability={self.durability.name})')
 
     def to_bus(self):
         """Return the bus QoS object as JSON text."""
@@ -69,9 +69,9 @@ def profile_of(qos_profile):
         return qos_profile
     if isinstance(qos_profile, int) and not isinstance(qos_profile, bool):
         if qos_profile < 0:
-            raise ValueError('history depth must be >= 0, got {}'.format(qos_profile))
+            raise ValueError(f'history depth must be >= 0, got {qos_profile}')
         return QoSProfile(depth=qos_profile)
-    raise TypeError('Expected QoSProfile or int, but received {!r}'.format(type(qos_profile)))
+    raise TypeError(f'Expected QoSProfile or int, but received {type(qos_profile)!r}')
 
 
 qos_profile_system_default = QoSProfile(depth=10)

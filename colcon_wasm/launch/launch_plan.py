@@ -50,14 +50,14 @@ def validate_node_name(name, namespace, where, what='node'):
     """
     if name is not None and not _NAME.match(name):
         raise LaunchError(
-            "{} name '{}' is not valid: use letters, digits and '_', not starting "
-            'with a digit'.format(what, name), *where)
+            f"{what} name '{name}' is not valid: use letters, digits and '_', not starting "
+            'with a digit', *where)
     if namespace is not None and namespace != '/':
         tokens = namespace.strip('/').split('/')
         if not all(_NAMESPACE_TOKEN.match(t) for t in tokens):
             raise LaunchError(
-                "namespace '{}' is not valid: use '/'-separated names of letters, "
-                "digits and '_'".format(namespace), *where)
+                f"namespace '{namespace}' is not valid: use '/'-separated names of letters, "
+                "digits and '_'", *where)
 
 
 def fully_qualified_name(namespace, name):
@@ -107,13 +107,13 @@ class NodeProcess:
         """Return the arguments after ``--ros-args`` that launch_ros would give."""
         argv = list(self.ros_arguments)
         if self.name is not None:
-            argv += ['-r', '__node:={}'.format(self.name)]
+            argv += ['-r', f'__node:={self.name}']
         if self.namespace is not None:
-            argv += ['-r', '__ns:={}'.format(self.namespace)]
+            argv += ['-r', f'__ns:={self.namespace}']
         for name, value, node in self.parameters:
-            argv += ['-p', '{}{}:={}'.format(node + ':' if node else '', name, value)]
+            argv += ['-p', f"{node + ':' if node else ''}{name}:={value}"]
         for source, target in self.remappings:
-            argv += ['-r', '{}:={}'.format(source, target)]
+            argv += ['-r', f'{source}:={target}']
         return argv
 
     def argv(self):
@@ -145,4 +145,4 @@ class LaunchPlan:
         self.arguments = dict(arguments or {})
         self.loads = list(loads)
         for index, process in enumerate(self.processes, start=1):
-            process.label = '{}-{}'.format(process.exec_name, index)
+            process.label = f'{process.exec_name}-{index}'
