@@ -21,16 +21,14 @@ import {
   LINK_TARGETED, LOCK_CONTENDED, LOCK_OWNER_MASK, MAGIC, MIN_CLASS_SHIFT, N, P, PROC_ALIVE,
   PROC_DEAD, PROC_FREE, QOS, REC_ALIVE, REC_FREE, S, SIZE_CLASSES,
 } from './layout.mjs';
+import { Code } from './abi/bus_abi.mjs';
 import { multiMemorySupported } from './copier.mjs';
 import {
   Durability, History, Reliability, checkCompatible, decodeQos, durationMs,
 } from './qos.mjs';
 
-/** Status codes; the numbers equal wasm_cpp::Code. */
-export const Code = Object.freeze({
-  OK: 0, ERROR: 1, TIMEOUT: 2, UNSUPPORTED: 3, BAD_ALLOC: 10, INVALID_ARGUMENT: 11,
-  NODE_NAME_NON_EXISTENT: 203,
-});
+/** Status codes; the numbers equal wasm_cpp::Code (abi/bus_abi.mjs). */
+export { Code };
 
 /** An error of a bus operation, with a wasm_cpp::Code. */
 export class BusError extends Error {

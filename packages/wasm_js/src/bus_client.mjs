@@ -37,30 +37,12 @@ import {
   E, EP_FLAG_IGNORE_LOCAL, H, L, LINK_BEST_EFFORT, LINK_BLOCKING, LINK_TARGETED, N, P,
   PROC_KIND_NODE, QOS, REC_ALIVE, S,
 } from './layout.mjs';
+import { EventType, TakeMode, WAIT_ITEM_WORDS, WaitKind } from './abi/bus_abi.mjs';
 import { heapCopier } from './copier.mjs';
 import { History, Liveliness, encodeQos, resolveQos, validateQos } from './qos.mjs';
 
-/** Event kinds (values equal rmw_event_type_t / wasm_cpp::EventType). */
-export const EventType = Object.freeze({
-  LIVELINESS_CHANGED: 0,
-  REQUESTED_DEADLINE_MISSED: 1,
-  REQUESTED_QOS_INCOMPATIBLE: 2,
-  MESSAGE_LOST: 3,
-  LIVELINESS_LOST: 4,
-  OFFERED_DEADLINE_MISSED: 5,
-  OFFERED_QOS_INCOMPATIBLE: 6,
-});
-
-/** Wait item kinds (values equal wasm_cpp::WaitItem::Kind). */
-export const WaitKind = Object.freeze({
-  SUBSCRIPTION: 0, SERVICE: 1, CLIENT: 2, GUARD_CONDITION: 3, EVENT: 4,
-});
-
-/** Take modes: what an endpoint reads. */
-export const TakeMode = Object.freeze({ MESSAGE: 0, REQUEST: 1, RESPONSE: 2 });
-
-/** Words per wait item: kind, handle, aux, result. */
-export const WAIT_ITEM_WORDS = 4;
+/** Event kinds, wait item kinds, take modes: abi/bus_abi.mjs (shared with wasm_cpp). */
+export { EventType, TakeMode, WAIT_ITEM_WORDS, WaitKind };
 
 // A ROS name ('/chatter', '/ns/topic'), or a native one without the leading
 // slash ('chatter'): rmw_wasm_cpp passes those for avoid_ros_namespace_conventions,

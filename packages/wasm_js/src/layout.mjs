@@ -17,6 +17,10 @@
  * @module layout
  */
 
+import {
+  ENDPOINT_FLAG_IGNORE_LOCAL, EndpointKind, QOS, QOS_FLAG_AVOID_ROS_NAMESPACE,
+} from './abi/bus_abi.mjs';
+
 export const MAGIC = 0x53554257; // 'WBUS'
 export const LAYOUT_VERSION = 2;
 
@@ -100,11 +104,11 @@ export const N = Object.freeze({
 export const REC_FREE = 0;
 export const REC_ALIVE = 1;
 
-/** Endpoint kinds (values equal wasm_cpp::EndpointKind). */
-export const KIND_PUBLISHER = 1;
-export const KIND_SUBSCRIPTION = 2;
-export const KIND_SERVICE = 3;
-export const KIND_CLIENT = 4;
+/** Endpoint kinds (abi/bus_abi.mjs EndpointKind), and nodes' kind in gids. */
+export const KIND_PUBLISHER = EndpointKind.PUBLISHER;
+export const KIND_SUBSCRIPTION = EndpointKind.SUBSCRIPTION;
+export const KIND_SERVICE = EndpointKind.SERVICE;
+export const KIND_CLIENT = EndpointKind.CLIENT;
 export const KIND_NODE = 5;
 
 /** Endpoint record (publisher, subscription, service server or client). */
@@ -161,25 +165,10 @@ export const E = Object.freeze({
   NOT_ALIVE_SEEN: 61,
   WORDS: 64,
 });
-export const EP_FLAG_IGNORE_LOCAL = 1;
+export const EP_FLAG_IGNORE_LOCAL = ENDPOINT_FLAG_IGNORE_LOCAL;
 
-/** QoS words (the wasm_bus_qos struct shared with wasm_cpp). */
-export const QOS = Object.freeze({
-  HISTORY: 0,
-  DEPTH: 1,
-  RELIABILITY: 2,
-  DURABILITY: 3,
-  LIVELINESS: 4,
-  FLAGS: 5,
-  DEADLINE_LO: 6,
-  DEADLINE_HI: 7,
-  LIFESPAN_LO: 8,
-  LIFESPAN_HI: 9,
-  LEASE_LO: 10,
-  LEASE_HI: 11,
-  WORDS: 12,
-});
-export const QOS_FLAG_AVOID_ROS_NAMESPACE = 1;
+/** QoS words: abi/bus_abi.mjs QOS (shared with wasm_cpp). */
+export { QOS, QOS_FLAG_AVOID_ROS_NAMESPACE };
 
 /** Link record: one matched (writer ring, reader) pair with the reader's cursor. */
 export const L = Object.freeze({
