@@ -29,17 +29,13 @@
  * @module bus_client
  */
 
-import {
-  Bus, BusError, Code, KIND_CLIENT, KIND_NODE, KIND_PUBLISHER, KIND_SERVICE, KIND_SUBSCRIPTION,
-  MAX_RING_SLOTS, REC_DYING, REC_ZOMBIE, nextPow2, now,
+import { Bus, BusError, Code, KIND_CLIENT, KIND_NODE, KIND_PUBLISHER, KIND_SERVICE, KIND_SUBSCRIPTION, MAX_RING_SLOTS, nextPow2, now, REC_DYING, REC_ZOMBIE,
 } from './bus.mjs';
-import {
-  E, EP_FLAG_IGNORE_LOCAL, H, L, LINK_BEST_EFFORT, LINK_BLOCKING, LINK_TARGETED, N, P,
-  PROC_KIND_NODE, QOS, REC_ALIVE, S,
+import { ENDPOINT, EP_FLAG_IGNORE_LOCAL, HEADER, LINK, LINK_BEST_EFFORT, LINK_BLOCKING, LINK_TARGETED, NODE, PROC_KIND_NODE, PROCESS, QOS, REC_ALIVE, SLOT,
 } from './layout.mjs';
 import { EventType, TakeMode, WAIT_ITEM_WORDS, WaitKind } from './abi/bus_abi.mjs';
 import { heapCopier } from './copier.mjs';
-import { History, Liveliness, encodeQos, resolveQos, validateQos } from './qos.mjs';
+import { encodeQos, History, Liveliness, resolveQos, validateQos } from './qos.mjs';
 
 /** Event kinds, wait item kinds, take modes: abi/bus_abi.mjs (shared with wasm_cpp). */
 export { EventType, TakeMode, WAIT_ITEM_WORDS, WaitKind };
@@ -151,8 +147,8 @@ export class BusClient {
     }
     this.bus = bus;
     this.pid = pid;
-    this.bellIndex = bus.proc(pid) + P.BELL;
-    this.sleepersIndex = bus.proc(pid) + P.SLEEPERS;
+    this.bellIndex = bus.proc(pid) + PROCESS.BELL;
+    this.sleepersIndex = bus.proc(pid) + PROCESS.SLEEPERS;
     this._cacheVersion = -1;
     /** @type {Map<number, {links: Int32Array, blocking: Int32Array, pids: Int32Array}>} */
     this._writers = new Map();
@@ -207,7 +203,7 @@ export class BusClient {
 
   _refresh() {
     // A plain read: a stale version only delays the cache refresh.
-    const v = this.bus.i32[H.GRAPH_VERSION];
+    const v = this.bus.i32[HEADER.GRAPH_VERSION];
     if (v !== this._cacheVersion) {
       this._cacheVersion = v;
       this._writers.clear();
@@ -225,13 +221,13 @@ export class BusClient {
     const links = [];
     const blocking = [];
     const pids = new Set();
-    const hwm = Atomics.load(i32, H.LINK_HWM);
+    const hwm = Atomics.load(i32, HEADER.LINK_HWM);
     for (let l = 0; l < hwm; l++) {
       const lb = bus.link(l);
-      if (Atomics.load(i32, lb + L.STATE) !== REC_ALIVE || i32[lb + L.WRITER] !== ep) continue;
+      if (Atomics.load(i32, lb + LINK.STATE) !== REC_ALIVE || i32[lb + LINK.WRITER] !== ep) continue;
       links.push(l);
-      if (i32[lb + L.FLAGS] & LINK_BLOCKING) blocking.push(l);
-      pids.add(i32[bus.ep(i32[lb + L.READER]) + E.PID]);
+      if (i32[lb + LINK.FLAGS] & LINK_BLOCKING) blocking.push(l);
+      pids.add(i32[bus.ep(i32[lb + LINK.READER]) + ENDPOINT.PID]);
     }
     w = { links: Int32Array.from(links), blocking: Int32Array.from(blocking), pids: Int32Array.from(pids), floor: 0, floorValid: false };
     this._writers.set(ep, w);
@@ -244,10 +240,10 @@ export class BusClient {
     const bus = this.bus;
     const i32 = bus.i32;
     const links = [];
-    const hwm = Atomics.load(i32, H.LINK_HWM);
+    const hwm = Atomics.load(i32, HEADER.LINK_HWM);
     for (let l = 0; l < hwm; l++) {
       const lb = bus.link(l);
-      if (Atomics.load(i32, lb + L.STATE) === REC_ALIVE && i32[lb + L.READER] === ep) links.push(l);
+      if (Atomics.load(i32, lb + LINK.STATE) === REC_ALIVE && i32[lb + LINK.READER] === ep) links.push(l);
     }
     r = links.length ? Int32Array.from(links) : EMPTY;
     this._readers.set(ep, r);
@@ -272,7 +268,7 @@ export class BusClient {
 
   /** A bus-wide unique context id. */
   createContext() {
-    return Atomics.add(this.bus.i32, H.SERIAL, 1) + 1;
+    return Atomics.add(this.bus.i32, HEADER.SERIAL, 1) + 1;
   }
 
   /**
@@ -306,7 +302,7 @@ export class BusClient {
   _checkNode(index) {
     const b = this.bus.node(index);
     if (!Number.isInteger(index) || index < 0 || index >= this.bus.nodeCap ||
-        Atomics.load(this.bus.i32, b + N.STATE) !== REC_ALIVE || this.bus.i32[b + N.PID] !== this.pid) {
+        Atomics.load(this.bus.i32, b + NODE.STATE) !== REC_ALIVE || this.bus.i32[b + NODE.PID] !== this.pid) {
       throw new BusError(Code.INVALID_ARGUMENT, `node handle ${index} does not name a live node of this process`);
     }
   }
@@ -372,7 +368,7 @@ export class BusClient {
     }
     const b = bus.ep(index);
     const i32 = bus.i32;
-    if (i32[b + E.STATE] !== REC_ALIVE || i32[b + E.PID] !== this.pid || (kind && i32[b + E.KIND] !== kind)) {
+    if (i32[b + ENDPOINT.STATE] !== REC_ALIVE || i32[b + ENDPOINT.PID] !== this.pid || (kind && i32[b + ENDPOINT.KIND] !== kind)) {
       throw new BusError(Code.INVALID_ARGUMENT,
         `${op}: endpoint handle ${index} does not name a live ${kind ? KIND_NAMES[kind] : 'endpoint'} of this process`);
     }
@@ -383,14 +379,14 @@ export class BusClient {
   endpointName(index) {
     const bus = this.bus;
     const b = bus.ep(index);
-    return bus.readString(bus.i32[b + E.STR_OFF], bus.i32[b + E.NAME_LEN]);
+    return bus.readString(bus.i32[b + ENDPOINT.STR_OFF], bus.i32[b + ENDPOINT.NAME_LEN]);
   }
 
   // ------------------------------------------------------------ writer
 
   _wlock(b) {
     const i32 = this.bus.i32;
-    const w = b + E.WLOCK;
+    const w = b + ENDPOINT.WLOCK;
     if (Atomics.compareExchange(i32, w, 0, 1) === 0) return;
     for (;;) {
       if (Atomics.exchange(i32, w, 2) === 0) return;
@@ -400,7 +396,7 @@ export class BusClient {
 
   _wunlock(b) {
     const i32 = this.bus.i32;
-    if (Atomics.exchange(i32, b + E.WLOCK, 0) === 2) Atomics.notify(i32, b + E.WLOCK, 1);
+    if (Atomics.exchange(i32, b + ENDPOINT.WLOCK, 0) === 2) Atomics.notify(i32, b + ENDPOINT.WLOCK, 1);
   }
 
   /**
@@ -446,7 +442,7 @@ export class BusClient {
     const target = this.bus.endpointOfGid(gid);
     if (target < 0) return false;
     if (!(src instanceof Uint8Array)) this._badPayload(ep, src, 'send_response');
-    const serial = this.bus.i32[this.bus.ep(target) + E.SERIAL];
+    const serial = this.bus.i32[this.bus.ep(target) + ENDPOINT.SERIAL];
     this._write(ep, src, 0, src.length, timeoutMs, target + 1, serial, seqLo, seqHi, 'send_response');
     return true;
   }
@@ -461,29 +457,29 @@ export class BusClient {
     this._refresh();
     const w = this._writerInfo(ep);
     let i32 = bus.i32;
-    const slots = i32[b + E.RING_SLOTS];
-    const ring = i32[b + E.RING_OFF] >> 2;
+    const slots = i32[b + ENDPOINT.RING_SLOTS];
+    const ring = i32[b + ENDPOINT.RING_OFF] >> 2;
     this._wlock(b);
     let seq;
     try {
-      const n = i32[b + E.HEAD]; // only writers (under WLOCK) store it
-      const sw = ring + (n & (slots - 1)) * S.WORDS;
+      const n = i32[b + ENDPOINT.HEAD]; // only writers (under WLOCK) store it
+      const sw = ring + (n & (slots - 1)) * SLOT.WORDS;
       // Before overwriting message n - slots, every blocking reader must have taken it.
-      if (w.blocking.length && i32[sw + S.COMMIT] === ((n - slots + 1) | 0) &&
+      if (w.blocking.length && i32[sw + SLOT.COMMIT] === ((n - slots + 1) | 0) &&
           !this._takenByAll(w, (n - slots) | 0, n) && this._blockingReader(w, (n - slots) | 0, sw) >= 0) {
         this._awaitSlot(ep, b, w, n, slots, sw, timeoutMs, op);
       }
       i32 = bus.i32;
-      Atomics.store(i32, sw + S.COMMIT, ~(n + 1));
-      let block = i32[sw + S.BLOCK];
-      if (i32[sw + S.CAP] < len || block === 0) {
+      Atomics.store(i32, sw + SLOT.COMMIT, ~(n + 1));
+      let block = i32[sw + SLOT.BLOCK];
+      if (i32[sw + SLOT.CAP] < len || block === 0) {
         bus.lock(this.pid);
         try {
           bus.free(block);
           block = bus.alloc(Math.max(len, 64), this.pid);
           i32 = bus.i32;
-          i32[sw + S.BLOCK] = block;
-          i32[sw + S.CAP] = block ? bus.blockCapacity(block) : 0;
+          i32[sw + SLOT.BLOCK] = block;
+          i32[sw + SLOT.CAP] = block ? bus.blockCapacity(block) : 0;
         } finally {
           bus.unlock(this.pid);
         }
@@ -499,19 +495,19 @@ export class BusClient {
         else copyBytes(bus.u8, block, src, srcOff, len);
       }
       const t = now();
-      const hi = i32[b + E.HEAD_HI] + (((n + 1) | 0) === 0 ? 1 : 0);
-      i32[sw + S.LEN] = len;
-      i32[sw + S.SEQ_HI] = hi;
-      i32[sw + S.TARGET] = target;
-      i32[sw + S.TARGET_SERIAL] = targetSerial;
-      i32[sw + S.REQ_LO] = reqLo;
-      i32[sw + S.REQ_HI] = reqHi;
-      bus.f64[(sw + S.TIME_F64) >> 1] = t;
-      Atomics.store(i32, sw + S.COMMIT, (n + 1) | 0);
-      if (((n + 1) | 0) === 0) i32[b + E.HEAD_HI] = hi;
-      Atomics.store(i32, b + E.HEAD, (n + 1) | 0);
-      bus.f64[(b + E.LAST_PUB_F64) >> 1] = t;
-      bus.f64[(b + E.LAST_ASSERT_F64) >> 1] = t;
+      const hi = i32[b + ENDPOINT.HEAD_HI] + (((n + 1) | 0) === 0 ? 1 : 0);
+      i32[sw + SLOT.LEN] = len;
+      i32[sw + SLOT.SEQ_HI] = hi;
+      i32[sw + SLOT.TARGET] = target;
+      i32[sw + SLOT.TARGET_SERIAL] = targetSerial;
+      i32[sw + SLOT.REQ_LO] = reqLo;
+      i32[sw + SLOT.REQ_HI] = reqHi;
+      bus.f64[(sw + SLOT.TIME_F64) >> 1] = t;
+      Atomics.store(i32, sw + SLOT.COMMIT, (n + 1) | 0);
+      if (((n + 1) | 0) === 0) i32[b + ENDPOINT.HEAD_HI] = hi;
+      Atomics.store(i32, b + ENDPOINT.HEAD, (n + 1) | 0);
+      bus.f64[(b + ENDPOINT.LAST_PUB_F64) >> 1] = t;
+      bus.f64[(b + ENDPOINT.LAST_ASSERT_F64) >> 1] = t;
       seq = hi * 4294967296 + ((n + 1) >>> 0);
     } finally {
       this._wunlock(b);
@@ -534,21 +530,21 @@ export class BusClient {
         const bell = Atomics.load(i32, this.bellIndex);
         if (this.service) this.service();
         // The slot holds message `old` only if it was committed (ring not yet wrapped otherwise).
-        if (Atomics.load(i32, sw + S.COMMIT) !== ((old + 1) | 0)) return;
+        if (Atomics.load(i32, sw + SLOT.COMMIT) !== ((old + 1) | 0)) return;
         const blocker = this._blockingReader(w, old, sw);
         if (blocker < 0) return;
         if (!waiting) {
-          Atomics.add(i32, b + E.ACK_WAITERS, 1);
+          Atomics.add(i32, b + ENDPOINT.ACK_WAITERS, 1);
           waiting = true;
           continue; // re-check after announcing ourselves (see module comment)
         }
         const t = now();
         if (t >= deadline) {
-          const rb = bus.ep(i32[bus.link(blocker) + L.READER]);
-          const rnode = bus.node(i32[rb + E.NODE]);
-          const rname = bus.readString(i32[rnode + N.STR_OFF], i32[rnode + N.NAME_LEN]);
+          const rb = bus.ep(i32[bus.link(blocker) + LINK.READER]);
+          const rnode = bus.node(i32[rb + ENDPOINT.NODE]);
+          const rname = bus.readString(i32[rnode + NODE.STR_OFF], i32[rnode + NODE.NAME_LEN]);
           throw new BusError(Code.TIMEOUT,
-            `${op} on '${this.endpointName(ep)}' timed out after ${timeoutMs} ms: the ${KIND_NAMES[i32[rb + E.KIND]]} of node '${rname}' has not taken its oldest pending message and the writer's history of ${slots} messages is full (RELIABLE KEEP_ALL never drops); the message was not sent`);
+            `${op} on '${this.endpointName(ep)}' timed out after ${timeoutMs} ms: the ${KIND_NAMES[i32[rb + ENDPOINT.KIND]]} of node '${rname}' has not taken its oldest pending message and the writer's history of ${slots} messages is full (RELIABLE KEEP_ALL never drops); the message was not sent`);
         }
         // Readers ring only every eighth of the ring (_ringWaitingWriter): look again meanwhile.
         this.sleep(bell, Math.min(deadline - t, ACK_RECHECK_MS));
@@ -556,7 +552,7 @@ export class BusClient {
         w = this._writerInfo(ep);
       }
     } finally {
-      if (waiting) Atomics.sub(bus.i32, b + E.ACK_WAITERS, 1);
+      if (waiting) Atomics.sub(bus.i32, b + ENDPOINT.ACK_WAITERS, 1);
       Atomics.sub(bus.i32, this.sleepersIndex, 1);
     }
   }
@@ -576,7 +572,7 @@ export class BusClient {
     let low = 0; // cursors relative to head: all <= 0
     for (let i = 0; i < blocking.length; i++) {
       const lb = bus.link(blocking[i]);
-      const rel = (Atomics.load(i32, lb + L.CURSOR) - head) | 0;
+      const rel = (Atomics.load(i32, lb + LINK.CURSOR) - head) | 0;
       if (rel < low) low = rel;
     }
     w.floor = (head + low) | 0;
@@ -591,14 +587,14 @@ export class BusClient {
     const blocking = w.blocking;
     for (let i = 0; i < blocking.length; i++) {
       const lb = bus.link(blocking[i]);
-      const c = Atomics.load(i32, lb + L.CURSOR);
+      const c = Atomics.load(i32, lb + LINK.CURSOR);
       if (((old - c) | 0) < 0) continue; // taken
-      if (Atomics.load(i32, lb + L.STATE) !== REC_ALIVE) continue;
-      const reader = i32[lb + L.READER];
+      if (Atomics.load(i32, lb + LINK.STATE) !== REC_ALIVE) continue;
+      const reader = i32[lb + LINK.READER];
       const rb = bus.ep(reader);
-      if ((i32[lb + L.FLAGS] & LINK_TARGETED) &&
-          (i32[sw + S.TARGET] !== reader + 1 || i32[sw + S.TARGET_SERIAL] !== i32[rb + E.SERIAL])) continue;
-      if (!bus.processAlive(i32[rb + E.PID])) continue;
+      if ((i32[lb + LINK.FLAGS] & LINK_TARGETED) &&
+          (i32[sw + SLOT.TARGET] !== reader + 1 || i32[sw + SLOT.TARGET_SERIAL] !== i32[rb + ENDPOINT.SERIAL])) continue;
+      if (!bus.processAlive(i32[rb + ENDPOINT.PID])) continue;
       return blocking[i];
     }
     return -1;
@@ -612,7 +608,7 @@ export class BusClient {
     const bus = this.bus;
     const b = this._checkEndpoint(ep, 0, 'wait_for_all_acked');
     const deadline = timeoutMs < 0 ? Infinity : now() + timeoutMs;
-    Atomics.add(bus.i32, b + E.ACK_WAITERS, 1);
+    Atomics.add(bus.i32, b + ENDPOINT.ACK_WAITERS, 1);
     Atomics.add(bus.i32, this.sleepersIndex, 1);
     try {
       for (;;) {
@@ -621,18 +617,18 @@ export class BusClient {
         if (this.service) this.service();
         this._refresh();
         const w = this._writerInfo(ep);
-        const head = Atomics.load(i32, b + E.HEAD);
-        const slots = i32[b + E.RING_SLOTS];
+        const head = Atomics.load(i32, b + ENDPOINT.HEAD);
+        const slots = i32[b + ENDPOINT.RING_SLOTS];
         let pending = false;
         for (let i = 0; i < w.links.length && !pending; i++) {
           const lb = bus.link(w.links[i]);
-          if (Atomics.load(i32, lb + L.STATE) !== REC_ALIVE) continue;
-          if (i32[lb + L.FLAGS] & (LINK_BEST_EFFORT | LINK_TARGETED)) continue;
-          if (!bus.processAlive(i32[bus.ep(i32[lb + L.READER]) + E.PID])) continue;
-          const c = Atomics.load(i32, lb + L.CURSOR);
+          if (Atomics.load(i32, lb + LINK.STATE) !== REC_ALIVE) continue;
+          if (i32[lb + LINK.FLAGS] & (LINK_BEST_EFFORT | LINK_TARGETED)) continue;
+          if (!bus.processAlive(i32[bus.ep(i32[lb + LINK.READER]) + ENDPOINT.PID])) continue;
+          const c = Atomics.load(i32, lb + LINK.CURSOR);
           // Messages the reader can no longer take (ring lapped, or beyond its depth) count as acked.
           let floor = (head - slots) | 0;
-          const depth = i32[lb + L.DEPTH];
+          const depth = i32[lb + LINK.DEPTH];
           if (depth && ((head - depth - floor) | 0) > 0) floor = (head - depth) | 0;
           const from = ((c - floor) | 0) > 0 ? c : floor;
           if (((head - from) | 0) > 0) pending = true;
@@ -643,7 +639,7 @@ export class BusClient {
         this.sleep(bell, Math.min(deadline - t, ACK_RECHECK_MS));
       }
     } finally {
-      Atomics.sub(bus.i32, b + E.ACK_WAITERS, 1);
+      Atomics.sub(bus.i32, b + ENDPOINT.ACK_WAITERS, 1);
       Atomics.sub(bus.i32, this.sleepersIndex, 1);
     }
   }
@@ -654,16 +650,16 @@ export class BusClient {
     const t = now();
     if (ep >= 0) {
       const b = this._checkEndpoint(ep, 0, 'assert_liveliness');
-      bus.f64[(b + E.LAST_ASSERT_F64) >> 1] = t;
+      bus.f64[(b + ENDPOINT.LAST_ASSERT_F64) >> 1] = t;
     } else {
       const node = -1 - ep;
       this._checkNode(node);
       const i32 = bus.i32;
-      const hwm = Atomics.load(i32, H.EP_HWM);
+      const hwm = Atomics.load(i32, HEADER.EP_HWM);
       for (let e = 0; e < hwm; e++) {
         const b = bus.ep(e);
-        if (Atomics.load(i32, b + E.STATE) === REC_ALIVE && i32[b + E.PID] === this.pid &&
-            i32[b + E.NODE] === node) bus.f64[(b + E.LAST_ASSERT_F64) >> 1] = t;
+        if (Atomics.load(i32, b + ENDPOINT.STATE) === REC_ALIVE && i32[b + ENDPOINT.PID] === this.pid &&
+            i32[b + ENDPOINT.NODE] === node) bus.f64[(b + ENDPOINT.LAST_ASSERT_F64) >> 1] = t;
       }
     }
     // Readers compute liveliness lazily: make them re-check.
@@ -701,34 +697,34 @@ export class BusClient {
     for (let i = 0; i < links.length; i++) {
       const l = links[i];
       const lb = bus.link(l);
-      if (i32[lb + L.STATE] !== REC_ALIVE) continue;
-      const writer = i32[lb + L.WRITER];
+      if (i32[lb + LINK.STATE] !== REC_ALIVE) continue;
+      const writer = i32[lb + LINK.WRITER];
       const wb = bus.ep(writer);
-      const wstate = i32[wb + E.STATE];
+      const wstate = i32[wb + ENDPOINT.STATE];
       if (wstate !== REC_ALIVE) {
         // DYING: another thread is removing the writer under the registry
         // lock. Its ring stays intact while this link holds untaken messages
         // (it becomes a ZOMBIE), so a reader told "ready" still takes them.
         if (wstate !== REC_ZOMBIE && wstate !== REC_DYING) continue;
-        if (((Atomics.load(i32, wb + E.HEAD) - Atomics.load(i32, lb + L.CURSOR)) | 0) <= 0) {
+        if (((Atomics.load(i32, wb + ENDPOINT.HEAD) - Atomics.load(i32, lb + LINK.CURSOR)) | 0) <= 0) {
           if (wstate === REC_ZOMBIE) (drained || (drained = [])).push(l);
           continue;
         }
       }
-      const slots = i32[wb + E.RING_SLOTS];
-      const ring = i32[wb + E.RING_OFF] >> 2;
-      const flags = i32[lb + L.FLAGS];
+      const slots = i32[wb + ENDPOINT.RING_SLOTS];
+      const ring = i32[wb + ENDPOINT.RING_OFF] >> 2;
+      const flags = i32[lb + LINK.FLAGS];
       for (let guard = 0; guard < 1 << 22; guard++) {
-        const head = Atomics.load(i32, wb + E.HEAD);
-        const c = Atomics.load(i32, lb + L.CURSOR);
+        const head = Atomics.load(i32, wb + ENDPOINT.HEAD);
+        const c = Atomics.load(i32, lb + LINK.CURSOR);
         const avail = (head - c) | 0;
         if (avail <= 0) break;
         let start = c;
         if (avail > slots) start = (head - slots) | 0;
-        const depth = i32[lb + L.DEPTH];
+        const depth = i32[lb + LINK.DEPTH];
         if (depth && ((head - start) | 0) > depth) start = (head - depth) | 0;
         if (start !== c) {
-          if (Atomics.compareExchange(i32, lb + L.CURSOR, c, start) === c) {
+          if (Atomics.compareExchange(i32, lb + LINK.CURSOR, c, start) === c) {
             let lost;
             if (flags & LINK_BEST_EFFORT) lost = (start - c) | 0;
             else {
@@ -738,33 +734,33 @@ export class BusClient {
               const from = ((c - depthFloor) | 0) > 0 ? c : depthFloor;
               lost = Math.max(0, (ringFloor - from) | 0);
             }
-            if (lost > 0 && !(flags & LINK_TARGETED)) Atomics.add(i32, rb + E.LOST_TOTAL, lost);
+            if (lost > 0 && !(flags & LINK_TARGETED)) Atomics.add(i32, rb + ENDPOINT.LOST_TOTAL, lost);
           }
           continue;
         }
-        const sw = ring + (c & (slots - 1)) * S.WORDS;
-        const commit = Atomics.load(i32, sw + S.COMMIT);
+        const sw = ring + (c & (slots - 1)) * SLOT.WORDS;
+        const commit = Atomics.load(i32, sw + SLOT.COMMIT);
         if (commit !== ((c + 1) | 0)) {
           // Lapped while we looked: the writer is overwriting it. It is lost to us.
-          if (Atomics.compareExchange(i32, lb + L.CURSOR, c, (c + 1) | 0) === c && !(flags & LINK_TARGETED)) {
-            Atomics.add(i32, rb + E.LOST_TOTAL, 1);
+          if (Atomics.compareExchange(i32, lb + LINK.CURSOR, c, (c + 1) | 0) === c && !(flags & LINK_TARGETED)) {
+            Atomics.add(i32, rb + ENDPOINT.LOST_TOTAL, 1);
           }
           continue;
         }
         if (flags & LINK_TARGETED) {
-          const target = i32[sw + S.TARGET];
-          const tserial = i32[sw + S.TARGET_SERIAL];
-          if (Atomics.load(i32, sw + S.COMMIT) !== commit) continue;
-          if (target !== ep + 1 || tserial !== i32[rb + E.SERIAL]) {
-            Atomics.compareExchange(i32, lb + L.CURSOR, c, (c + 1) | 0);
+          const target = i32[sw + SLOT.TARGET];
+          const tserial = i32[sw + SLOT.TARGET_SERIAL];
+          if (Atomics.load(i32, sw + SLOT.COMMIT) !== commit) continue;
+          if (target !== ep + 1 || tserial !== i32[rb + ENDPOINT.SERIAL]) {
+            Atomics.compareExchange(i32, lb + LINK.CURSOR, c, (c + 1) | 0);
             continue;
           }
         }
-        const t = f64[(sw + S.TIME_F64) >> 1];
-        const lifespan = f64[(wb + E.LIFESPAN_MS_F64) >> 1];
+        const t = f64[(sw + SLOT.TIME_F64) >> 1];
+        const lifespan = f64[(wb + ENDPOINT.LIFESPAN_MS_F64) >> 1];
         if (lifespan !== Infinity && now() - t > lifespan) {
-          if (Atomics.load(i32, sw + S.COMMIT) === commit) {
-            Atomics.compareExchange(i32, lb + L.CURSOR, c, (c + 1) | 0);
+          if (Atomics.load(i32, sw + SLOT.COMMIT) === commit) {
+            Atomics.compareExchange(i32, lb + LINK.CURSOR, c, (c + 1) | 0);
           }
           continue;
         }
@@ -785,12 +781,12 @@ export class BusClient {
     st.cursor = bestCursor;
     st.slot = bestSlot;
     st.commit = commit;
-    st.block = i32[bestSlot + S.BLOCK];
-    st.len = i32[bestSlot + S.LEN];
+    st.block = i32[bestSlot + SLOT.BLOCK];
+    st.len = i32[bestSlot + SLOT.LEN];
     st.reader = ep;
     st.mode = mode;
-    st.writer = i32[bus.link(bestLink) + L.WRITER];
-    if (Atomics.load(i32, bestSlot + S.COMMIT) !== commit || st.len < 0 || st.len > bus.maxMessage) {
+    st.writer = i32[bus.link(bestLink) + LINK.WRITER];
+    if (Atomics.load(i32, bestSlot + SLOT.COMMIT) !== commit || st.len < 0 || st.len > bus.maxMessage) {
       // Torn read of a slot being overwritten: report "something may be there" with no length.
       st.len = 0;
       st.block = -1;
@@ -826,10 +822,10 @@ export class BusClient {
     const sw = st.slot;
     if (st.block < 0) return false;
     const info = this.info;
-    info.sourceTime = bus.f64[(sw + S.TIME_F64) >> 1];
-    info.pubSeqHi = i32[sw + S.SEQ_HI];
-    info.reqLo = i32[sw + S.REQ_LO];
-    info.reqHi = i32[sw + S.REQ_HI];
+    info.sourceTime = bus.f64[(sw + SLOT.TIME_F64) >> 1];
+    info.pubSeqHi = i32[sw + SLOT.SEQ_HI];
+    info.reqLo = i32[sw + SLOT.REQ_LO];
+    info.reqHi = i32[sw + SLOT.REQ_HI];
     const len = st.len;
     if (len) {
       if (st.block + len > bus.u8.length && (!bus.refreshViews() || st.block + len > bus.u8.length)) {
@@ -838,9 +834,9 @@ export class BusClient {
       if (dst === null) this.heapCopier.fromBus(dstOff, st.block, len);
       else copyBytes(dst, dstOff, bus.u8, st.block, len);
     }
-    if (Atomics.load(i32, sw + S.COMMIT) !== st.commit) return false;
+    if (Atomics.load(i32, sw + SLOT.COMMIT) !== st.commit) return false;
     const lb = bus.link(st.link);
-    if (Atomics.compareExchange(i32, lb + L.CURSOR, st.cursor, (st.cursor + 1) | 0) !== st.cursor) return false;
+    if (Atomics.compareExchange(i32, lb + LINK.CURSOR, st.cursor, (st.cursor + 1) | 0) !== st.cursor) return false;
     const rb = bus.ep(st.reader);
     const wb = bus.ep(st.writer);
     info.len = len;
@@ -850,21 +846,21 @@ export class BusClient {
     // timestamp is taken on arrival, not on take. This also spares a clock
     // read per take (a clock read costs 90-340 ns in a Chromium worker, see bus.mjs).
     info.receivedTime = info.sourceTime;
-    const lo = Atomics.add(i32, rb + E.RECV_SEQ_LO, 1) + 1;
-    if (lo === 0) Atomics.add(i32, rb + E.RECV_SEQ_HI, 1);
+    const lo = Atomics.add(i32, rb + ENDPOINT.RECV_SEQ_LO, 1) + 1;
+    if (lo === 0) Atomics.add(i32, rb + ENDPOINT.RECV_SEQ_HI, 1);
     info.recvSeqLo = lo;
-    info.recvSeqHi = i32[rb + E.RECV_SEQ_HI];
-    info.sameProcess = i32[wb + E.PID] === this.pid;
+    info.recvSeqHi = i32[rb + ENDPOINT.RECV_SEQ_HI];
+    info.sameProcess = i32[wb + ENDPOINT.PID] === this.pid;
     const g = info.gid;
     if (st.mode === TakeMode.RESPONSE) {
       // The request id of a response is (this client's gid, the request's number).
-      g[0] = bus.id; g[1] = this.pid; g[2] = (KIND_CLIENT << 24) | st.reader; g[3] = i32[rb + E.SERIAL];
+      g[0] = bus.id; g[1] = this.pid; g[2] = (KIND_CLIENT << 24) | st.reader; g[3] = i32[rb + ENDPOINT.SERIAL];
     } else {
-      g[0] = bus.id; g[1] = i32[wb + E.PID]; g[2] = (i32[wb + E.KIND] << 24) | st.writer; g[3] = i32[wb + E.SERIAL];
+      g[0] = bus.id; g[1] = i32[wb + ENDPOINT.PID]; g[2] = (i32[wb + ENDPOINT.KIND] << 24) | st.writer; g[3] = i32[wb + ENDPOINT.SERIAL];
       info.reqLo = st.commit;
       info.reqHi = info.pubSeqHi;
     }
-    if (Atomics.load(i32, wb + E.ACK_WAITERS) > 0) this._ringWaitingWriter(wb, (st.cursor + 1) | 0);
+    if (Atomics.load(i32, wb + ENDPOINT.ACK_WAITERS) > 0) this._ringWaitingWriter(wb, (st.cursor + 1) | 0);
     return true;
   }
 
@@ -878,10 +874,10 @@ export class BusClient {
    */
   _ringWaitingWriter(wb, next) {
     const i32 = this.bus.i32;
-    const slots = i32[wb + E.RING_SLOTS];
+    const slots = i32[wb + ENDPOINT.RING_SLOTS];
     const step = slots >= 8 ? slots >> 3 : 1;
-    if ((next & (step - 1)) === 0 || ((Atomics.load(i32, wb + E.HEAD) - next) | 0) <= 0) {
-      this.bus.ring(i32[wb + E.PID]);
+    if ((next & (step - 1)) === 0 || ((Atomics.load(i32, wb + ENDPOINT.HEAD) - next) | 0) <= 0) {
+      this.bus.ring(i32[wb + ENDPOINT.PID]);
     }
   }
 
@@ -913,15 +909,15 @@ export class BusClient {
     const i32 = bus.i32;
     const b = this._checkEndpoint(ep, 0, 'matched_count');
     this._refresh();
-    const kind = i32[b + E.KIND];
+    const kind = i32[b + ENDPOINT.KIND];
     const links = kind === KIND_PUBLISHER || kind === KIND_CLIENT ? this._writerInfo(ep).links : this._readerLinks(ep);
     let n = 0;
     for (let i = 0; i < links.length; i++) {
       const lb = bus.link(links[i]);
-      if (Atomics.load(i32, lb + L.STATE) !== REC_ALIVE) continue;
-      const other = i32[lb + L.WRITER] === ep ? i32[lb + L.READER] : i32[lb + L.WRITER];
+      if (Atomics.load(i32, lb + LINK.STATE) !== REC_ALIVE) continue;
+      const other = i32[lb + LINK.WRITER] === ep ? i32[lb + LINK.READER] : i32[lb + LINK.WRITER];
       const ob = bus.ep(other);
-      if (Atomics.load(i32, ob + E.STATE) === REC_ALIVE && bus.processAlive(i32[ob + E.PID])) n++;
+      if (Atomics.load(i32, ob + ENDPOINT.STATE) === REC_ALIVE && bus.processAlive(i32[ob + ENDPOINT.PID])) n++;
     }
     return n;
   }
@@ -936,7 +932,7 @@ export class BusClient {
 
   _evlock(b) {
     const i32 = this.bus.i32;
-    const w = b + E.EVLOCK;
+    const w = b + ENDPOINT.EVLOCK;
     if (Atomics.compareExchange(i32, w, 0, 1) === 0) return;
     for (;;) {
       if (Atomics.exchange(i32, w, 2) === 0) return;
@@ -946,7 +942,7 @@ export class BusClient {
 
   _evunlock(b) {
     const i32 = this.bus.i32;
-    if (Atomics.exchange(i32, b + E.EVLOCK, 0) === 2) Atomics.notify(i32, b + E.EVLOCK, 1);
+    if (Atomics.exchange(i32, b + ENDPOINT.EVLOCK, 0) === 2) Atomics.notify(i32, b + ENDPOINT.EVLOCK, 1);
   }
 
   /** Advance the deadline accounting of endpoint record b; returns the next expiry. */
@@ -954,17 +950,17 @@ export class BusClient {
     const bus = this.bus;
     const i32 = bus.i32;
     const f64 = bus.f64;
-    const period = f64[(b + E.DEADLINE_MS_F64) >> 1];
+    const period = f64[(b + ENDPOINT.DEADLINE_MS_F64) >> 1];
     if (period === Infinity || base <= 0) return Infinity;
-    if (f64[(b + E.DEADLINE_ACCT_BASE_F64) >> 1] !== base) {
-      f64[(b + E.DEADLINE_ACCT_BASE_F64) >> 1] = base;
-      i32[b + E.DEADLINE_ACCT_N] = 0;
+    if (f64[(b + ENDPOINT.DEADLINE_ACCT_BASE_F64) >> 1] !== base) {
+      f64[(b + ENDPOINT.DEADLINE_ACCT_BASE_F64) >> 1] = base;
+      i32[b + ENDPOINT.DEADLINE_ACCT_N] = 0;
     }
     const k = Math.floor((now() - base) / period);
-    const counted = i32[b + E.DEADLINE_ACCT_N];
+    const counted = i32[b + ENDPOINT.DEADLINE_ACCT_N];
     if (k > counted) {
-      i32[b + E.DEADLINE_TOTAL] += k - counted;
-      i32[b + E.DEADLINE_ACCT_N] = k;
+      i32[b + ENDPOINT.DEADLINE_TOTAL] += k - counted;
+      i32[b + ENDPOINT.DEADLINE_ACCT_N] = k;
     }
     return base + (Math.max(k, counted) + 1) * period;
   }
@@ -981,12 +977,12 @@ export class BusClient {
     const t = now();
     for (let i = 0; i < links.length; i++) {
       const lb = bus.link(links[i]);
-      if (Atomics.load(i32, lb + L.STATE) !== REC_ALIVE) continue;
-      const wb = bus.ep(i32[lb + L.WRITER]);
-      if (Atomics.load(i32, wb + E.STATE) !== REC_ALIVE || !bus.processAlive(i32[wb + E.PID])) continue;
-      const lease = f64[(wb + E.LEASE_MS_F64) >> 1];
-      if (i32[wb + E.QOS + QOS.LIVELINESS] === Liveliness.MANUAL_BY_TOPIC && lease !== Infinity) {
-        const until = f64[(wb + E.LAST_ASSERT_F64) >> 1] + lease;
+      if (Atomics.load(i32, lb + LINK.STATE) !== REC_ALIVE) continue;
+      const wb = bus.ep(i32[lb + LINK.WRITER]);
+      if (Atomics.load(i32, wb + ENDPOINT.STATE) !== REC_ALIVE || !bus.processAlive(i32[wb + ENDPOINT.PID])) continue;
+      const lease = f64[(wb + ENDPOINT.LEASE_MS_F64) >> 1];
+      if (i32[wb + ENDPOINT.QOS + QOS.LIVELINESS] === Liveliness.MANUAL_BY_TOPIC && lease !== Infinity) {
+        const until = f64[(wb + ENDPOINT.LAST_ASSERT_F64) >> 1] + lease;
         if (t <= until) {
           alive++;
           next = Math.min(next, until);
@@ -1009,7 +1005,7 @@ export class BusClient {
     const b = this._checkEndpoint(ep, 0, 'event');
     const i32 = bus.i32;
     const f64 = bus.f64;
-    const kind = i32[b + E.KIND];
+    const kind = i32[b + ENDPOINT.KIND];
     const isWriter = kind === KIND_PUBLISHER;
     const isReader = kind === KIND_SUBSCRIPTION;
     const ok = isReader ? type <= 3 : (isWriter && type >= 4 && type <= 6);
@@ -1028,42 +1024,42 @@ export class BusClient {
       switch (type) {
         case EventType.REQUESTED_QOS_INCOMPATIBLE:
         case EventType.OFFERED_QOS_INCOMPATIBLE:
-          totalW = E.INCOMPAT_TOTAL; seenW = E.INCOMPAT_SEEN;
-          r.policy = Atomics.load(i32, b + E.INCOMPAT_POLICY);
+          totalW = ENDPOINT.INCOMPAT_TOTAL; seenW = ENDPOINT.INCOMPAT_SEEN;
+          r.policy = Atomics.load(i32, b + ENDPOINT.INCOMPAT_POLICY);
           break;
         case EventType.MESSAGE_LOST:
-          totalW = E.LOST_TOTAL; seenW = E.LOST_SEEN;
+          totalW = ENDPOINT.LOST_TOTAL; seenW = ENDPOINT.LOST_SEEN;
           break;
         case EventType.OFFERED_DEADLINE_MISSED:
-          r.next = this._accountDeadline(b, f64[(b + E.LAST_PUB_F64) >> 1] * (i32[b + E.HEAD] !== 0 || i32[b + E.HEAD_HI] !== 0 ? 1 : 0));
-          totalW = E.DEADLINE_TOTAL; seenW = E.DEADLINE_SEEN;
+          r.next = this._accountDeadline(b, f64[(b + ENDPOINT.LAST_PUB_F64) >> 1] * (i32[b + ENDPOINT.HEAD] !== 0 || i32[b + ENDPOINT.HEAD_HI] !== 0 ? 1 : 0));
+          totalW = ENDPOINT.DEADLINE_TOTAL; seenW = ENDPOINT.DEADLINE_SEEN;
           break;
         case EventType.REQUESTED_DEADLINE_MISSED: {
           let base = 0;
           const links = this._readerLinks(ep);
           for (let i = 0; i < links.length; i++) {
             const lb = bus.link(links[i]);
-            if (Atomics.load(i32, lb + L.STATE) !== REC_ALIVE) continue;
-            const wb = bus.ep(i32[lb + L.WRITER]);
-            if (i32[wb + E.HEAD] === 0 && i32[wb + E.HEAD_HI] === 0) continue;
-            base = Math.max(base, f64[(wb + E.LAST_PUB_F64) >> 1]);
+            if (Atomics.load(i32, lb + LINK.STATE) !== REC_ALIVE) continue;
+            const wb = bus.ep(i32[lb + LINK.WRITER]);
+            if (i32[wb + ENDPOINT.HEAD] === 0 && i32[wb + ENDPOINT.HEAD_HI] === 0) continue;
+            base = Math.max(base, f64[(wb + ENDPOINT.LAST_PUB_F64) >> 1]);
           }
           r.next = this._accountDeadline(b, base);
-          totalW = E.DEADLINE_TOTAL; seenW = E.DEADLINE_SEEN;
+          totalW = ENDPOINT.DEADLINE_TOTAL; seenW = ENDPOINT.DEADLINE_SEEN;
           break;
         }
         case EventType.LIVELINESS_LOST: {
-          const lease = f64[(b + E.LEASE_MS_F64) >> 1];
-          if (i32[b + E.QOS + QOS.LIVELINESS] === Liveliness.MANUAL_BY_TOPIC && lease !== Infinity) {
-            const base = f64[(b + E.LAST_ASSERT_F64) >> 1];
+          const lease = f64[(b + ENDPOINT.LEASE_MS_F64) >> 1];
+          if (i32[b + ENDPOINT.QOS + QOS.LIVELINESS] === Liveliness.MANUAL_BY_TOPIC && lease !== Infinity) {
+            const base = f64[(b + ENDPOINT.LAST_ASSERT_F64) >> 1];
             if (now() > base + lease) {
-              if (f64[(b + E.LIVE_LOST_BASE_F64) >> 1] !== base) {
-                f64[(b + E.LIVE_LOST_BASE_F64) >> 1] = base;
-                i32[b + E.LIVE_LOST_TOTAL] += 1;
+              if (f64[(b + ENDPOINT.LIVE_LOST_BASE_F64) >> 1] !== base) {
+                f64[(b + ENDPOINT.LIVE_LOST_BASE_F64) >> 1] = base;
+                i32[b + ENDPOINT.LIVE_LOST_TOTAL] += 1;
               }
             } else r.next = base + lease;
           }
-          totalW = E.LIVE_LOST_TOTAL; seenW = E.LIVE_LOST_SEEN;
+          totalW = ENDPOINT.LIVE_LOST_TOTAL; seenW = ENDPOINT.LIVE_LOST_SEEN;
           break;
         }
         case EventType.LIVELINESS_CHANGED: {
@@ -1071,12 +1067,12 @@ export class BusClient {
           r.alive = alive;
           r.notAlive = notAlive;
           r.next = next;
-          r.aliveChange = alive - i32[b + E.ALIVE_SEEN];
-          r.notAliveChange = notAlive - i32[b + E.NOT_ALIVE_SEEN];
+          r.aliveChange = alive - i32[b + ENDPOINT.ALIVE_SEEN];
+          r.notAliveChange = notAlive - i32[b + ENDPOINT.NOT_ALIVE_SEEN];
           r.changed = r.aliveChange !== 0 || r.notAliveChange !== 0;
           if (take) {
-            i32[b + E.ALIVE_SEEN] = alive;
-            i32[b + E.NOT_ALIVE_SEEN] = notAlive;
+            i32[b + ENDPOINT.ALIVE_SEEN] = alive;
+            i32[b + ENDPOINT.NOT_ALIVE_SEEN] = notAlive;
           }
           return r;
         }
@@ -1168,7 +1164,7 @@ export class BusClient {
         case WaitKind.GUARD_CONDITION: {
           const w = handle >> 2;
           if (heap32[w] === 1) {
-            const v = Atomics.load(this.bus.i32, H.GRAPH_VERSION);
+            const v = Atomics.load(this.bus.i32, HEADER.GRAPH_VERSION);
             if (Atomics.exchange(heap32, w + 2, v) !== v) r = 1;
           }
           if (Atomics.exchange(heap32, w + 1, 0) !== 0) r = 1;
@@ -1264,26 +1260,26 @@ export class BusClient {
         const links = this._readerLinks(ep);
         for (let k = 0; k < links.length; k++) {
           const lb = bus.link(links[k]);
-          if (Atomics.load(i32, lb + L.STATE) !== REC_ALIVE) continue;
-          const wb = bus.ep(i32[lb + L.WRITER]);
-          const head = Atomics.load(i32, wb + E.HEAD);
+          if (Atomics.load(i32, lb + LINK.STATE) !== REC_ALIVE) continue;
+          const wb = bus.ep(i32[lb + LINK.WRITER]);
+          const head = Atomics.load(i32, wb + ENDPOINT.HEAD);
           const key = links[k] * LISTEN_KEY + ep;
           let mark = this._listenMarks.get(key);
-          if (mark === undefined) mark = Atomics.load(i32, lb + L.CURSOR);
-          const slots = i32[wb + E.RING_SLOTS];
+          if (mark === undefined) mark = Atomics.load(i32, lb + LINK.CURSOR);
+          const slots = i32[wb + ENDPOINT.RING_SLOTS];
           let from = mark;
           if (((head - from) | 0) > slots) from = (head - slots) | 0;
-          if (i32[lb + L.FLAGS] & LINK_TARGETED) {
-            const ring = i32[wb + E.RING_OFF] >> 2;
-            const serial = i32[bus.ep(ep) + E.SERIAL];
+          if (i32[lb + LINK.FLAGS] & LINK_TARGETED) {
+            const ring = i32[wb + ENDPOINT.RING_OFF] >> 2;
+            const serial = i32[bus.ep(ep) + ENDPOINT.SERIAL];
             for (let m = from; ((head - m) | 0) > 0; m = (m + 1) | 0) {
-              const sw = ring + (m & (slots - 1)) * S.WORDS;
-              if (i32[sw + S.TARGET] === ep + 1 && i32[sw + S.TARGET_SERIAL] === serial) n++;
+              const sw = ring + (m & (slots - 1)) * SLOT.WORDS;
+              if (i32[sw + SLOT.TARGET] === ep + 1 && i32[sw + SLOT.TARGET_SERIAL] === serial) n++;
             }
           } else {
             let d = (head - from) | 0;
-            const depth = i32[lb + L.DEPTH];
-            if (depth && d > depth && mark === Atomics.load(i32, lb + L.CURSOR)) d = depth;
+            const depth = i32[lb + LINK.DEPTH];
+            if (depth && d > depth && mark === Atomics.load(i32, lb + LINK.CURSOR)) d = depth;
             n += Math.max(0, d);
           }
           this._listenMarks.set(key, head);
