@@ -106,6 +106,10 @@ export const NODE = Object.freeze({
 });
 export const REC_FREE = 0;
 export const REC_ALIVE = 1;
+/** Being removed, under the registry lock (readers still drain a writer's ring). */
+export const REC_DYING = 2;
+/** A removed writer whose ring is kept until its readers drained it. */
+export const REC_ZOMBIE = 3;
 
 /** Endpoint kinds (abi/bus_abi.mjs EndpointKind), and nodes' kind in gids. */
 export const KIND_PUBLISHER = EndpointKind.PUBLISHER;

@@ -10,7 +10,7 @@
  */
 
 import { Bus, BusError, Code, waitAsyncAlive } from './bus.mjs';
-import { HEADER, PROC_KIND_NODE, PROC_KIND_RUNTIME, PROC_KIND_TOOLS, PROCESS } from './layout.mjs';
+import { PROC_KIND_NODE, PROC_KIND_RUNTIME, PROC_KIND_TOOLS } from './layout.mjs';
 import { compileWasm, fetchScript, HostWorker, isNode, resolveUrl, siblingUrl } from './platform.mjs';
 import { FromHost, ToHost, UNCAUGHT_EXCEPTION } from './protocol.mjs';
 import { checkedFiles, checkedMounts } from './spawn_options.mjs';
@@ -548,7 +548,7 @@ export class Runtime {
   /** Remove a dead process from the bus without blocking (main thread). */
   async _reap(pid, proc) {
     const bus = this.bus;
-    Atomics.store(bus.i32, bus.proc(pid) + PROCESS.STATE, 2);
+    bus.markDead(pid);
     bus.ringAll();
     // A terminated browser worker (or one of its pthreads) stops a little
     // later: if it holds the lock, let it finish the mutation it began.
@@ -634,7 +634,7 @@ export class Runtime {
           }
         }
       }
-      const r = Atomics.waitAsync(this.bus.i32, HEADER.GRAPH_VERSION, v);
+      const r = this.bus.waitGraphAsync(v);
       if (r.async) r.value.then(loop);
       else Promise.resolve().then(loop);
     };
@@ -668,8 +668,7 @@ export class Runtime {
       await tools.close();
     }
     this._closed = true;
-    Atomics.add(this.bus.i32, HEADER.GRAPH_VERSION, 1);
-    Atomics.notify(this.bus.i32, HEADER.GRAPH_VERSION);
+    this.bus.bumpGraph();
   }
 }
 
