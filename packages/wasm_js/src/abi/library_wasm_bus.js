@@ -15,6 +15,10 @@
 //
 // Functions return wasm_cpp::Code values (0 = ok); the message of the last
 // failure of the calling thread is read with wasm_bus_last_error().
+//
+// Over 500 lines on purpose: Emscripten merges one library object per
+// --js-library file into every executable (no imports); each C function of
+// bus_abi.hpp is a short adapter to BusClient (src/bus_client.mjs).
 
 var LibraryWasmBus = {
   // addRunDependency / removeRunDependency come from the preamble (always present).
