@@ -74,17 +74,17 @@ def install(tmp_path_factory):
     (runtime / 'index.mjs').write_text("import { y } from './dep.mjs';\n"
                                        + 'export const x = 1;\n' * 100)
     (runtime / 'dep.mjs').write_text(
-        "export { z } from './tools/deep.mjs';\nexport const y = 2;\n")
-    (runtime / 'tools').mkdir()
-    (runtime / 'tools' / 'deep.mjs').write_text('export const z = 3;\n')
+        "export { z } from './page/deep.mjs';\nexport const y = 2;\n")
+    (runtime / 'page').mkdir()
+    (runtime / 'page' / 'deep.mjs').write_text('export const z = 3;\n')
     (runtime / 'index.mjs.gz').write_bytes(gzip.compress(b'precompressed'))
     (runtime / 'sub').mkdir()
     os.symlink('/etc/hostname', runtime / 'link_out.mjs')
     (runtime / 'cdr.mjs').write_text('// stale: from an old build\n')
     page_modules = root / 'page_modules'
-    (page_modules / 'tools').mkdir(parents=True)
+    (page_modules / 'page').mkdir(parents=True)
     (page_modules / 'cdr.mjs').write_text('// the page version\n')
-    (page_modules / 'tools' / 'deep.mjs').write_text('export const z = 4;\n')
+    (page_modules / 'page' / 'deep.mjs').write_text('export const z = 4;\n')
     return base, runtime, page_modules
 
 
@@ -264,9 +264,9 @@ def test_page_embeds_the_workspace(server):
 
 
 def test_page_modules_come_with_colcon_wasm_not_the_install_space(server):
-    # cdr.mjs and tools/ belong to the page: an old build's copy must not be served
+    # cdr.mjs and page/ belong to the page: an old build's copy must not be served
     assert _get(server, '/wasm_js/cdr.mjs')[2] == b'// the page version\n'
-    assert _get(server, '/wasm_js/tools/deep.mjs')[2] == b'export const z = 4;\n'
+    assert _get(server, '/wasm_js/page/deep.mjs')[2] == b'export const z = 4;\n'
     assert _get(server, '/wasm_js/dep.mjs')[0] == 200  # the runtime: the install space's
 
 
@@ -274,7 +274,7 @@ def test_page_preloads_its_module_graph_and_the_run_executables(server):
     _, _, body = _get(server, '/?run=demo_nodes/talker&run=demo_nodes/nope')
     html = body.decode()
     for module in ('/launcher/app.mjs', '/launcher/session.mjs', '/launcher/views/topics.mjs',
-                   '/wasm_js/index.mjs', '/wasm_js/dep.mjs', '/wasm_js/tools/deep.mjs'):
+                   '/wasm_js/index.mjs', '/wasm_js/dep.mjs', '/wasm_js/page/deep.mjs'):
         assert f'<link rel="modulepreload" href="{module}">' in html, module
     assert '<link rel="preload" href="/ws/demo_nodes/lib/demo_nodes/talker.wasm" as="fetch" ' \
         'crossorigin>' in html

@@ -9,7 +9,7 @@ container's ``<container>/_container/load_node`` service
 as ``get_composable_node_load_request`` does: remap rules ``from:=to``,
 parameters and extra arguments as ``rcl_interfaces/msg/Parameter`` typed as
 rclpy types the launch values, parameter files narrowed to the ``**`` and
-``ns/name`` sections.  The Node host (``tools/composable.mjs``) makes the
+``ns/name`` sections.  The Node host (``launch/composable.mjs``) makes the
 calls; any container that serves the service works.
 """
 

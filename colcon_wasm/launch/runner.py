@@ -3,7 +3,7 @@
 
 """Run a launch plan headless in Node.js, all processes on one bus.
 
-The plan goes to the runtime's ``tools/launch_host.mjs`` as JSON; the host
+The plan goes to the runtime's ``launch/run_plan.mjs`` as JSON; the host
 starts each process with the wasm_js ``Runtime``, prints its output prefixed
 ``[label]`` as ``ros2 launch`` does, loads composable nodes into their
 containers, stops everything after ``duration`` seconds, and exits non-zero
@@ -26,7 +26,7 @@ from colcon_wasm.launch.install_view import program_environment
 from colcon_wasm.launch.install_view import view_bases
 from colcon_wasm.launch.install_view import view_mounts
 
-HOST_SCRIPT = Path('tools') / 'launch_host.mjs'
+HOST_SCRIPT = Path('launch') / 'run_plan.mjs'
 DEFAULT_LOAD_TIMEOUT = 60.0
 LAUNCH_FILE_SUFFIXES = ('.launch.xml', '.launch.yaml', '.launch.yml', '.launch.py',
                         '.xml', '.yaml', '.yml', '.py')
@@ -80,7 +80,7 @@ def _check_load_node_types(install_space, load):
 def host_plan(plan, install_space, *, duration=None, echo=(), stdin=False,
               load_timeout=DEFAULT_LOAD_TIMEOUT, bases=None):
     """
-    Describe a plan for ``launch_host.mjs``: absolute paths, no lookups left.
+    Describe a plan for ``run_plan.mjs``: absolute paths, no lookups left.
 
     With ``stdin`` the (single) process reads this command's standard input,
     as with ``ros2 run``; launched processes get none, as with ``ros2 launch``.

@@ -9,7 +9,7 @@
 ``/launcher/<file>``       the page's modules and styles (``templates/launcher``)
 ``/wasm_js/<file>``        the JS runtime (``share/wasm_js`` of the install
                            space, else the copy inside colcon-wasm); its
-                           page-side modules ``cdr.mjs``, ``tools/`` and ``bridges/`` always
+                           page-side modules ``cdr.mjs``, ``page/`` and ``bridges/`` always
                            come with colcon-wasm, like the page itself
 ``/workspace.json``        packages, executables and type descriptions, from
                            the manifests (read anew on each request)
@@ -39,7 +39,7 @@ PAGE_TEMPLATE = 'index.html'
 PAGE_MODULE = '/launcher/app.mjs'
 # /wasm_js/ entries that belong to the page (same version as the page), not
 # to the runtime the executables were built with
-PAGE_MODULES = ('cdr.mjs', 'tools', 'bridges')
+PAGE_MODULES = ('cdr.mjs', 'page', 'bridges')
 
 # static `import ... from '<url>'` and `export ... from '<url>'` of an ES module
 _IMPORT = re.compile(r"""^\s*(?:import|export)\b[^'"]*?\bfrom\s*['"]([^'"]+)['"]"""
@@ -75,7 +75,7 @@ class Site:
           highest priority first (default: the install space's base and underlays)
         :param launcher_dir: ``templates/launcher`` (page template and modules)
         :param runtime_dir: the directory holding wasm_js's ``index.mjs``
-        :param page_modules_dir: where ``cdr.mjs`` and ``tools/`` are served
+        :param page_modules_dir: where ``cdr.mjs`` and ``page/`` are served
           from (the page's version of them); default: ``runtime_dir``
         :param runtime_origin: where the runtime comes from, shown on the page
         """

@@ -6,7 +6,7 @@
 // goes through here, so the Runtime API is used in this file only.
 
 import { TypeRegistry } from '/wasm_js/cdr.mjs';
-import { graphModel, subscriptionQos } from '/wasm_js/tools/graph.mjs';
+import { graphModel, subscriptionQos } from '/wasm_js/page/graph.mjs';
 import { mergeRemote } from '/wasm_js/bridges/rosbridge/remote_graph.mjs';
 
 const SEVERITY = /^\s*\[(DEBUG|INFO|WARN|WARNING|ERROR|FATAL)\]/;

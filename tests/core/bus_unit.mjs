@@ -19,7 +19,7 @@ const [srcDir, name] = process.argv.slice(2);
 const src = (file) => pathToFileURL(path.join(path.resolve(srcDir), file)).href;
 const { Bus, BusError, Code, KIND_CLIENT, KIND_PUBLISHER, KIND_SERVICE, KIND_SUBSCRIPTION } = await import(src('bus.mjs'));
 const { BusClient, EventType, TakeMode } = await import(src('bus_client.mjs'));
-const { E, H, P, PROC_DEAD, PROC_KIND_NODE, PROC_KIND_RUNTIME } = await import(src('layout.mjs'));
+const { ENDPOINT, HEADER, PROCESS, PROC_DEAD, PROC_KIND_NODE, PROC_KIND_RUNTIME } = await import(src('layout.mjs'));
 const { checkCompatible, encodeQos, resolveQos, PolicyKind } = await import(src('qos.mjs'));
 
 /** A bus with a runtime process (pid 1) and `n` node processes. */
@@ -35,7 +35,7 @@ function world(n, options = {}) {
 }
 
 function die(bus, pid) {
-  Atomics.store(bus.i32, bus.proc(pid) + P.STATE, PROC_DEAD);
+  Atomics.store(bus.i32, bus.proc(pid) + PROCESS.STATE, PROC_DEAD);
 }
 
 function endpoint(c, kind, node, name, qos = {}, extra = {}) {
@@ -78,7 +78,7 @@ const CHECKS = {
     const timeout = new Promise((_, reject) => setTimeout(() => reject(new Error(`stuck after ${JSON.stringify(order)}`)), 5000));
     await Promise.race([Promise.all(waiters), timeout]);
     assert.equal(order.length, 4);
-    assert.equal(Atomics.load(bus.i32, H.LOCK), 0);
+    assert.equal(Atomics.load(bus.i32, HEADER.LOCK), 0);
   },
 
   /** A process killed in the middle of a registry change leaves nothing half visible. */
@@ -88,9 +88,9 @@ const CHECKS = {
     // `a` takes the lock and writes half an endpoint record, then dies.
     assert.ok(bus.tryLock(a.pid));
     const half = bus.ep(5);
-    bus.i32[half + E.KIND] = KIND_PUBLISHER;
-    bus.i32[half + E.PID] = a.pid;
-    bus.i32[half + E.NODE] = node.index;
+    bus.i32[half + ENDPOINT.KIND] = KIND_PUBLISHER;
+    bus.i32[half + ENDPOINT.PID] = a.pid;
+    bus.i32[half + ENDPOINT.NODE] = node.index;
     assert.equal(bus.snapshot().endpoints.length, 0, 'no STATE store, nothing visible');
     die(bus, a.pid);
     // The runtime cleans up without blocking: it steals the lock.
@@ -118,7 +118,7 @@ const CHECKS = {
     const pub = endpoint(a, KIND_PUBLISHER, na.index, '/z');
     for (let i = 0; i < 3; i++) a.publish(pub, bytes(i));
     a.destroyEndpoint(pub);
-    assert.equal(Atomics.load(bus.i32, bus.ep(pub) + E.STATE), 3, 'a zombie keeps the ring');
+    assert.equal(Atomics.load(bus.i32, bus.ep(pub) + ENDPOINT.STATE), 3, 'a zombie keeps the ring');
     assert.equal(b.matchedCount(sub), 0, 'but it is no longer matched');
     assert.equal(b.graph().endpoints.filter((e) => e.name === '/z').length, 1, 'only the subscription is in the graph');
     const got = [];
@@ -126,7 +126,7 @@ const CHECKS = {
     while ((m = b.take(sub))) got.push(m[0]);
     assert.deepEqual(got, [0, 1, 2]);
     assert.equal(b.take(sub), null);
-    assert.equal(Atomics.load(bus.i32, bus.ep(pub) + E.STATE), 0, 'drained: freed');
+    assert.equal(Atomics.load(bus.i32, bus.ep(pub) + ENDPOINT.STATE), 0, 'drained: freed');
   },
 
   /**
@@ -140,7 +140,7 @@ const CHECKS = {
     a.publish(pub, bytes(7));
     assert.ok(b.hasData(sub), 'ready while the writer is alive');
     // The state removeEndpoint() gives the record before it decides ZOMBIE or FREE.
-    Atomics.store(bus.i32, bus.ep(pub) + E.STATE, 2);
+    Atomics.store(bus.i32, bus.ep(pub) + ENDPOINT.STATE, 2);
     assert.ok(b.hasData(sub), 'still ready while the writer is being removed');
     const m = b.take(sub);
     assert.ok(m, 'taken while the writer is being removed');

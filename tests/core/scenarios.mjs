@@ -9,6 +9,10 @@
  * Observations per process: exit {code, crashed, reason}, `results` (the
  * key=value pairs of its "RESULT" lines), `messages` ("MESSAGE" lines),
  * `lines` (all log lines, capped).
+ *
+ * Over 500 lines on purpose: one table of scenarios that page.html and
+ * run_scenario.mjs import as a whole, so that Node.js and Chromium run the
+ * same code.
  */
 
 const MAX_LINES = 400;

@@ -1,7 +1,7 @@
 // Copyright 2026 colcon-wasm contributors
 // Licensed under the Apache License, Version 2.0
 
-// Tests of the pure helpers of packages/wasm_js/src/tools/, run by
+// Tests of the pure helpers of packages/wasm_js/src/page/, run by
 // tests/test_page_tools.py with `node --test` (CDR_TYPES: cdr_test_msgs types).
 
 import assert from 'node:assert/strict';
@@ -9,10 +9,10 @@ import { readFileSync } from 'node:fs';
 import { test } from 'node:test';
 
 import { TypeRegistry } from '../../packages/wasm_js/src/cdr.mjs';
-import { asNumber, getPath, numericPaths } from '../../packages/wasm_js/src/tools/fields.mjs';
-import { compressedMimeType, ImageError, imageKind, imageToRgba } from '../../packages/wasm_js/src/tools/image.mjs';
-import { formatBandwidth, TopicStats } from '../../packages/wasm_js/src/tools/stats.mjs';
-import { formatYaml, parseYaml, YamlError } from '../../packages/wasm_js/src/tools/yaml.mjs';
+import { asNumber, getPath, numericPaths } from '../../packages/wasm_js/src/page/fields.mjs';
+import { compressedMimeType, ImageError, imageKind, imageToRgba } from '../../packages/wasm_js/src/page/image.mjs';
+import { formatBandwidth, TopicStats } from '../../packages/wasm_js/src/page/stats.mjs';
+import { formatYaml, parseYaml, YamlError } from '../../packages/wasm_js/src/page/yaml.mjs';
 
 const registry = new TypeRegistry([JSON.parse(readFileSync(process.env.CDR_TYPES, 'utf-8'))]);
 
@@ -128,7 +128,7 @@ test('imageToRgba converts the common encodings', () => {
 });
 
 test('actionsOf finds actions by their hidden send_goal services', async () => {
-  const { actionsOf } = await import('../../packages/wasm_js/src/tools/ros_clients.mjs');
+  const { actionsOf } = await import('../../packages/wasm_js/src/page/ros_clients.mjs');
   assert.deepEqual(actionsOf([
     { name: '/fibonacci/_action/send_goal', types: ['example_interfaces/action/Fibonacci_SendGoal'], servers: 1, clients: 0 },
     { name: '/fibonacci/_action/get_result', types: ['example_interfaces/action/Fibonacci_GetResult'], servers: 1, clients: 0 },
@@ -137,7 +137,7 @@ test('actionsOf finds actions by their hidden send_goal services', async () => {
 });
 
 test('parameter values convert as ros2 param set infers them', async () => {
-  const { parameterValue, toParameterValue, ParameterType } = await import('../../packages/wasm_js/src/tools/ros_clients.mjs');
+  const { parameterValue, toParameterValue, ParameterType } = await import('../../packages/wasm_js/src/page/ros_clients.mjs');
   assert.deepEqual(toParameterValue(true), { type: ParameterType.BOOL, bool_value: true });
   assert.deepEqual(toParameterValue(5), { type: ParameterType.INTEGER, integer_value: 5n });
   assert.deepEqual(toParameterValue(2.5), { type: ParameterType.DOUBLE, double_value: 2.5 });
@@ -152,7 +152,7 @@ test('parameter values convert as ros2 param set infers them', async () => {
 });
 
 test('graphModel: nodes with endpoints, counts, hidden names, the tools process left out', async () => {
-  const { graphModel } = await import('../../packages/wasm_js/src/tools/graph.mjs');
+  const { graphModel } = await import('../../packages/wasm_js/src/page/graph.mjs');
   const ep = (node, pid, type) => ({ node, namespace: '/', type, pid });
   const model = graphModel({
     nodes: [{ name: 'talker', namespace: '/', pid: 2, process: 'talker-1' },
@@ -188,7 +188,7 @@ test('imageKind knows image types and messages of their shape', () => {
 });
 
 test('subscriptionQos hears every publisher, as ros2 topic echo chooses', async () => {
-  const { subscriptionQos } = await import('../../packages/wasm_js/src/tools/graph.mjs');
+  const { subscriptionQos } = await import('../../packages/wasm_js/src/page/graph.mjs');
   const reliable = { reliability: 'reliable', durability: 'volatile' };
   const sensor = { reliability: 'best_effort', durability: 'volatile' };
   const latched = { reliability: 'reliable', durability: 'transient_local' };

@@ -23,6 +23,11 @@
  * BigInt64Array, ...), of other types as Arrays; messages as plain objects.
  * `encode` also accepts plain arrays, numbers or decimal strings for 64-bit
  * fields and 'NaN'/'Infinity'/'-Infinity' for floats (the JSON forms).
+ *
+ * Over 500 lines on purpose: one codec. The type registry compiles each
+ * type into codecs built from the private Writer, Reader and field codecs
+ * here; split across modules, those internals would become exports that
+ * nothing else should use.
  */
 
 export const SCHEMA_VERSION = 1;

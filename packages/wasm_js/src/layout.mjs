@@ -17,11 +17,13 @@
  * @module layout
  */
 
+import { ENDPOINT_FLAG_IGNORE_LOCAL, EndpointKind, QOS, QOS_FLAG_AVOID_ROS_NAMESPACE } from './abi/bus_abi.mjs';
+
 export const MAGIC = 0x53554257; // 'WBUS'
 export const LAYOUT_VERSION = 2;
 
 /** Header words. */
-export const H = Object.freeze({
+export const HEADER = Object.freeze({
   MAGIC: 0,
   VERSION: 1,
   BUS_ID: 2,
@@ -54,6 +56,11 @@ export const H = Object.freeze({
   QUAR_TAIL: 24,
   /** Bytes currently allocated (for diagnostics). */
   ARENA_USED: 25,
+  /** Where the search for a free record of each table starts next. */
+  NODE_HINT: 26,
+  EP_HINT: 27,
+  LINK_HINT: 28,
+  PROC_HINT: 29,
   /** Free list heads, one per size class. */
   FREE_BASE: 32,
 });
@@ -67,7 +74,7 @@ export const LOCK_OWNER_MASK = 0x3fffffff;
 export const GRACE_MS = 2000;
 
 /** Process record: one per bus process (one executable and its pthreads). */
-export const P = Object.freeze({
+export const PROCESS = Object.freeze({
   STATE: 0,
   /** Doorbell: incremented by every publish to one of this process' readers. */
   BELL: 1,
@@ -84,7 +91,7 @@ export const PROC_KIND_NODE = 2;
 export const PROC_KIND_TOOLS = 3;
 
 /** Node record. */
-export const N = Object.freeze({
+export const NODE = Object.freeze({
   STATE: 0,
   PID: 1,
   DOMAIN: 2,
@@ -99,16 +106,20 @@ export const N = Object.freeze({
 });
 export const REC_FREE = 0;
 export const REC_ALIVE = 1;
+/** Being removed, under the registry lock (readers still drain a writer's ring). */
+export const REC_DYING = 2;
+/** A removed writer whose ring is kept until its readers drained it. */
+export const REC_ZOMBIE = 3;
 
-/** Endpoint kinds (values equal wasm_cpp::EndpointKind). */
-export const KIND_PUBLISHER = 1;
-export const KIND_SUBSCRIPTION = 2;
-export const KIND_SERVICE = 3;
-export const KIND_CLIENT = 4;
+/** Endpoint kinds (abi/bus_abi.mjs EndpointKind), and nodes' kind in gids. */
+export const KIND_PUBLISHER = EndpointKind.PUBLISHER;
+export const KIND_SUBSCRIPTION = EndpointKind.SUBSCRIPTION;
+export const KIND_SERVICE = EndpointKind.SERVICE;
+export const KIND_CLIENT = EndpointKind.CLIENT;
 export const KIND_NODE = 5;
 
 /** Endpoint record (publisher, subscription, service server or client). */
-export const E = Object.freeze({
+export const ENDPOINT = Object.freeze({
   STATE: 0,
   KIND: 1,
   PID: 2,
@@ -121,6 +132,8 @@ export const E = Object.freeze({
   STR_OFF: 8,
   NAME_LEN: 9,
   TYPE_LEN: 10,
+  /** FNV-1a hash of the name, compared before the names themselves. */
+  NAME_HASH: 11,
   /** QoS, 12 words in wasm_bus_qos layout (see QOS below). */
   QOS: 12,
   /** Derived durations in milliseconds (Infinity when none), float64 at word/2. */
@@ -161,28 +174,13 @@ export const E = Object.freeze({
   NOT_ALIVE_SEEN: 61,
   WORDS: 64,
 });
-export const EP_FLAG_IGNORE_LOCAL = 1;
+export const EP_FLAG_IGNORE_LOCAL = ENDPOINT_FLAG_IGNORE_LOCAL;
 
-/** QoS words (the wasm_bus_qos struct shared with wasm_cpp). */
-export const QOS = Object.freeze({
-  HISTORY: 0,
-  DEPTH: 1,
-  RELIABILITY: 2,
-  DURABILITY: 3,
-  LIVELINESS: 4,
-  FLAGS: 5,
-  DEADLINE_LO: 6,
-  DEADLINE_HI: 7,
-  LIFESPAN_LO: 8,
-  LIFESPAN_HI: 9,
-  LEASE_LO: 10,
-  LEASE_HI: 11,
-  WORDS: 12,
-});
-export const QOS_FLAG_AVOID_ROS_NAMESPACE = 1;
+/** QoS words: abi/bus_abi.mjs QOS (shared with wasm_cpp). */
+export { QOS, QOS_FLAG_AVOID_ROS_NAMESPACE };
 
 /** Link record: one matched (writer ring, reader) pair with the reader's cursor. */
-export const L = Object.freeze({
+export const LINK = Object.freeze({
   STATE: 0,
   WRITER: 1,
   READER: 2,
@@ -204,7 +202,7 @@ export const LINK_TARGETED = 2;
 export const LINK_BEST_EFFORT = 4;
 
 /** Ring slot. */
-export const S = Object.freeze({
+export const SLOT = Object.freeze({
   /** n+1 when message n is committed, ~(n+1) while it is being written. */
   COMMIT: 0,
   SEQ_HI: 1,
@@ -221,7 +219,7 @@ export const S = Object.freeze({
 });
 
 /** Arena block header. */
-export const B = Object.freeze({
+export const BLOCK = Object.freeze({
   CLASS: 0,
   STATE: 1,
   OWNER: 2,

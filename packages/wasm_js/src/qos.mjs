@@ -7,20 +7,12 @@
  * @module qos
  */
 
-import { QOS, QOS_FLAG_AVOID_ROS_NAMESPACE } from './layout.mjs';
+import {
+  Durability, History, Liveliness, PolicyKind, QOS, QOS_FLAG_AVOID_ROS_NAMESPACE, Reliability,
+} from './abi/bus_abi.mjs';
 
-/** Policy values (equal to rmw's enums). */
-export const History = Object.freeze({ SYSTEM_DEFAULT: 0, KEEP_LAST: 1, KEEP_ALL: 2 });
-export const Reliability = Object.freeze({ SYSTEM_DEFAULT: 0, RELIABLE: 1, BEST_EFFORT: 2 });
-export const Durability = Object.freeze({ SYSTEM_DEFAULT: 0, TRANSIENT_LOCAL: 1, VOLATILE: 2 });
-export const Liveliness = Object.freeze({
-  SYSTEM_DEFAULT: 0, AUTOMATIC: 1, MANUAL_BY_NODE: 2, MANUAL_BY_TOPIC: 3,
-});
-/** rmw_qos_policy_kind_t bits. */
-export const PolicyKind = Object.freeze({
-  INVALID: 1, DURABILITY: 2, DEADLINE: 4, LIVELINESS: 8, RELIABILITY: 16,
-  HISTORY: 32, LIFESPAN: 64, DEPTH: 128, LIVELINESS_LEASE_DURATION: 256,
-});
+/** Policy values (equal to rmw's enums): abi/bus_abi.mjs. */
+export { Durability, History, Liveliness, PolicyKind, Reliability };
 
 const NS_PER_MS = 1e6;
 const TWO32 = 4294967296;

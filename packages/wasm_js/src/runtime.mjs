@@ -9,13 +9,15 @@
  * @module runtime
  */
 
-import { Bus, BusError, Code, waitAsyncAlive } from './bus.mjs';
-import { H, P, PROC_KIND_NODE, PROC_KIND_RUNTIME, PROC_KIND_TOOLS } from './layout.mjs';
-import { HostWorker, compileWasm, fetchScript, isNode, resolveUrl, siblingUrl } from './platform.mjs';
+import { Bus, BusError, Code } from './bus.mjs';
+import { PROC_KIND_NODE, PROC_KIND_RUNTIME, PROC_KIND_TOOLS } from './layout.mjs';
+import { compileWasm, fetchScript, HostWorker, isNode, resolveUrl, siblingUrl } from './platform.mjs';
 import { FromHost, ToHost, UNCAUGHT_EXCEPTION } from './protocol.mjs';
 import { checkedFiles, checkedMounts } from './spawn_options.mjs';
-import { DEFAULT_STDIN_CAPACITY, StdinPipe } from './stdin_pipe.mjs';
-import { Tools } from './tools.mjs';
+import { Tools } from './tools_process/main_thread.mjs';
+import { gidHex, makeStdinPipe, NodeProcess, severityOf, stripAnsi } from './node_process.mjs';
+
+export { NodeProcess, severityOf, stripAnsi };
 
 /** Thrown by Runtime.create() when shared memory is unavailable (page not cross-origin isolated). */
 export class IsolationError extends Error {
@@ -37,220 +39,6 @@ const ISOLATION_HELP =
  * without waiting on the bus).
  */
 const REFILL_AFTER_MS = 200;
-
-const SEVERITY_RE = /^\[(DEBUG|INFO|WARN|ERROR|FATAL)\]/;
-// rcutils colours its console output when isatty() says yes, which it does
-// under Emscripten: "\x1b[33m[WARN] ...\x1b[0m".
-const ANSI_SGR_RE = /\x1b\[[0-9;]*m/g;
-
-/**
- * Remove ANSI colour codes (SGR sequences) from a log line.
- * @param {string} text
- */
-export function stripAnsi(text) {
-  return text.indexOf('\x1b') < 0 ? text : text.replace(ANSI_SGR_RE, '');
-}
-
-/**
- * Parse the severity of a log line: the ROS tag when there is one
- * (`[INFO] [1700000000.123456789] [talker]: ...`), else INFO for stdout and
- * ERROR for stderr.
- * @param {string} stream
- * @param {string} text
- */
-export function severityOf(stream, text) {
-  const m = SEVERITY_RE.exec(text);
-  if (m) return m[1];
-  return stream === 'stderr' ? 'ERROR' : 'INFO';
-}
-
-function gidHex(words) {
-  return Array.from(new Uint8Array(Int32Array.from(words).buffer), (b) => b.toString(16).padStart(2, '0')).join('');
-}
-
-/**
- * The stdin pipe a spawn() asks for: none, an open one (`true`), or one
- * holding a whole text (or bytes) and closed.
- * @param {string|Uint8Array|boolean|null|undefined} stdin
- * @returns {StdinPipe|null}
- */
-function makeStdinPipe(stdin) {
-  if (stdin === undefined || stdin === null || stdin === false) return null;
-  if (stdin === true) return StdinPipe.create();
-  const bytes = stdin instanceof Uint8Array ? stdin : new TextEncoder().encode(String(stdin));
-  const pipe = StdinPipe.create(Math.max(DEFAULT_STDIN_CAPACITY, bytes.length));
-  pipe.write(bytes);
-  pipe.close();
-  return pipe;
-}
-
-/**
- * One running executable (a bus process).
- */
-export class NodeProcess {
-  constructor(runtime, pid, name, worker, options) {
-    /** Bus process id. */
-    this.id = pid;
-    /** Name given to spawn() (or the executable's base name). */
-    this.name = name;
-    /** performance.now() when spawn() created the worker. */
-    this.spawnedAt = options.spawnedAt;
-    /** performance.now() when the glue was loaded (main() about to run). */
-    this.startedAt = null;
-    /**
-     * How many of its pthread pool workers were booted ahead by a warm host
-     * (known once started; 0 for a program without threads or a cold host).
-     */
-    this.prestartedPthreadWorkers = 0;
-    /**
-     * True when the host loaded the glue from the script the Runtime
-     * prefetched (browsers, shared module), false when it loaded it by URL.
-     */
-    this.glueFromMemory = false;
-    /**
-     * Known once the program has exited by itself: true when its main
-     * thread copied messages between its heap and the bus with
-     * memory.copy (the bus is a WebAssembly.Memory, see copier.mjs), false
-     * when it used TypedArray.set() or never published or took.
-     */
-    this.memoryCopy = false;
-    this._runtime = runtime;
-    this._worker = worker;
-    this._options = options;
-    this._done = false;
-    this._stdin = options.stdinPipe || null;
-    this._stdinWrites = Promise.resolve();
-    /** Resolves with {code, crashed, reason} when the process has ended and left the graph. */
-    this.exited = new Promise((resolve) => { this._resolve = resolve; });
-    /**
-     * Resolves (with nothing) once main() has started and settled: it first
-     * waits on the bus, or has returned or yielded to the event loop; or when
-     * the process has ended. performance.now() then: {@link NodeProcess#settledAt}.
-     */
-    this.settled = new Promise((resolve) => { this._resolveSettled = resolve; });
-    /** performance.now() when main() settled (null before, and when it ended first). */
-    this.settledAt = null;
-  }
-
-  _onMessage(m) {
-    if (!m || typeof m !== 'object') return;
-    if (m.type === FromHost.LOG) {
-      const onLog = this._options.onLog;
-      if (onLog) {
-        try {
-          const text = stripAnsi(m.text);
-          onLog({ stream: m.stream, severity: severityOf(m.stream, text), text, name: this.name, pid: this.id });
-        } catch (e) {
-          console.error(`onLog of '${this.name}' threw:`, e);
-        }
-      }
-    } else if (m.type === FromHost.STARTED) {
-      this.startedAt = performance.now();
-      this.prestartedPthreadWorkers = m.prestartedPthreadWorkers || 0;
-      this.glueFromMemory = !!m.glueFromMemory;
-    } else if (m.type === FromHost.SETTLED) {
-      if (this.settledAt === null && !this._done) this.settledAt = performance.now();
-      this._resolveSettled();
-    } else if (m.type === FromHost.EXIT) {
-      this.memoryCopy = !!m.memoryCopy;
-      this._finish({ code: m.code, crashed: !!m.crashed, reason: m.reason || '' });
-    }
-  }
-
-  async _finish(result) {
-    if (this._done) return;
-    this._done = true;
-    this._resolveSettled();
-    try {
-      await this._worker.terminate();
-    } catch (e) {
-      // Already gone.
-    }
-    try {
-      await this._runtime._reap(this.id, this);
-    } catch (e) {
-      // The exit must still be reported; the bus says what went wrong.
-      console.error(`wasm_js: cleaning up after '${this.name}' (process ${this.id}) failed: ${e && e.stack ? e.stack : e}`);
-    }
-    if (this._options.onExit) {
-      try {
-        this._options.onExit(result);
-      } catch (e) {
-        console.error(`onExit of '${this.name}' threw:`, e);
-      }
-    }
-    this._resolve(result);
-  }
-
-  /**
-   * Write to the process' standard input (spawned with `stdin: true`), as a
-   * user types into a terminal. Writes keep their order; a write larger than
-   * the pipe waits until the process has read enough of it.
-   * @param {string|Uint8Array} data text (UTF-8) or bytes
-   * @returns {Promise<void>} resolves once every byte is in the pipe
-   * @throws {BusError} when the process has no open standard input
-   */
-  writeStdin(data) {
-    const bytes = typeof data === 'string' ? new TextEncoder().encode(data) : data;
-    if (!(bytes instanceof Uint8Array)) {
-      return Promise.reject(new BusError(Code.INVALID_ARGUMENT,
-        `writeStdin '${this.name}': give a string or a Uint8Array, not ${typeof data}`));
-    }
-    const write = this._stdinWrites.then(() => this._writeAll(bytes));
-    this._stdinWrites = write.catch(() => {});
-    return write;
-  }
-
-  async _writeAll(bytes) {
-    const pipe = this._checkStdin('writeStdin');
-    let rest = bytes;
-    for (;;) {
-      if (this._done) {
-        throw new BusError(Code.ERROR, `writeStdin '${this.name}': the process has ended`);
-      }
-      rest = rest.subarray(pipe.write(rest));
-      this._runtime.bus.ring(this.id);
-      if (rest.length === 0) return;
-      // full: wait for the process to read (bounded, to notice its end)
-      await waitAsyncAlive(pipe.i32, StdinPipe.READ_INDEX, pipe.readCount(), 50);
-    }
-  }
-
-  /**
-   * Close the process' standard input: it reads end of file once it has read
-   * what was written before.
-   * @returns {Promise<void>} resolves after the pending writes
-   */
-  closeStdin() {
-    const close = this._stdinWrites.then(() => {
-      const pipe = this._checkStdin('closeStdin');
-      pipe.close();
-      if (!this._done) this._runtime.bus.ring(this.id);
-    });
-    this._stdinWrites = close.catch(() => {});
-    return close;
-  }
-
-  _checkStdin(what) {
-    if (!this._stdin) {
-      throw new BusError(Code.INVALID_ARGUMENT,
-        `${what} '${this.name}': its standard input is not open (spawn it with stdin: true)`);
-    }
-    if (this._stdin.closed()) {
-      throw new BusError(Code.INVALID_ARGUMENT, `${what} '${this.name}': its standard input is closed`);
-    }
-    return this._stdin;
-  }
-
-  /**
-   * Terminate the process now; its nodes and endpoints leave the graph.
-   * @returns {Promise<{code: number|null, crashed: boolean, reason: string}>}
-   */
-  stop() {
-    this._finish({ code: null, crashed: false, reason: 'stopped' });
-    return this.exited;
-  }
-}
 
 /**
  * The middleware runtime of one page or Node.js process.
@@ -587,7 +375,7 @@ export class Runtime {
   /** Remove a dead process from the bus without blocking (main thread). */
   async _reap(pid, proc) {
     const bus = this.bus;
-    Atomics.store(bus.i32, bus.proc(pid) + P.STATE, 2);
+    bus.markDead(pid);
     bus.ringAll();
     // A terminated browser worker (or one of its pthreads) stops a little
     // later: if it holds the lock, let it finish the mutation it began.
@@ -673,7 +461,7 @@ export class Runtime {
           }
         }
       }
-      const r = Atomics.waitAsync(this.bus.i32, H.GRAPH_VERSION, v);
+      const r = this.bus.waitGraphAsync(v);
       if (r.async) r.value.then(loop);
       else Promise.resolve().then(loop);
     };
@@ -707,8 +495,7 @@ export class Runtime {
       await tools.close();
     }
     this._closed = true;
-    Atomics.add(this.bus.i32, H.GRAPH_VERSION, 1);
-    Atomics.notify(this.bus.i32, H.GRAPH_VERSION);
+    this.bus.bumpGraph();
   }
 }
 

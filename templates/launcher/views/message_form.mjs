@@ -4,7 +4,7 @@
 // A form for a message value (publish, service request, action goal):
 // one input per field, or the whole message as YAML/JSON text.
 
-import { formatYaml, parseYaml } from '/wasm_js/tools/yaml.mjs';
+import { formatYaml, parseYaml } from '/wasm_js/page/yaml.mjs';
 import { toPlain } from '/wasm_js/cdr.mjs';
 import { h, setChildren } from '../dom.mjs';
 

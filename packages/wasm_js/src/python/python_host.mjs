@@ -24,7 +24,7 @@ import {
   BusClient, KIND_CLIENT, KIND_PUBLISHER, KIND_SERVICE, KIND_SUBSCRIPTION, TakeMode, WAIT_ITEM_WORDS, WaitKind,
 } from '../bus_client.mjs';
 import { TypeRegistry } from '../cdr.mjs';
-import { H } from '../layout.mjs';
+import { HEADER } from '../layout.mjs';
 import { FromHost } from '../protocol.mjs';
 
 /** Where the rclpy package lives inside Pyodide's file system. */
@@ -128,12 +128,12 @@ function busModule(client, registry, context, settle) {
       const i32 = client.bus.i32;
       const end = timeoutMs < 0 ? Infinity : performance.now() + timeoutMs;
       for (;;) {
-        const version = Atomics.load(i32, H.GRAPH_VERSION);
+        const version = Atomics.load(i32, HEADER.GRAPH_VERSION);
         if (client.serverAvailable(ep)) return true;
         const left = end - performance.now();
         if (left <= 0) return false;
         settle();
-        Atomics.wait(i32, H.GRAPH_VERSION, version, left);
+        Atomics.wait(i32, HEADER.GRAPH_VERSION, version, left);
       }
     },
     matched_count(ep) {

@@ -3,7 +3,7 @@
 
 /**
  * Foxglove's parameters over the nodes' rcl parameter services, with the
- * ParameterClient the rosbridge rosapi code uses (tools/ros_clients.mjs).
+ * ParameterClient the rosbridge rosapi code uses (page/ros_clients.mjs).
  * A Foxglove parameter name is `<node>.<parameter>`, as foxglove_bridge
  * spells it (`/talker.rate`); values are JSON, with `type: float64` for a
  * double that looks like an integer, `float64_array`, and `byte_array`
@@ -13,7 +13,7 @@
  * @module bridges/foxglove/parameters
  */
 
-import { ParameterClient, ParameterType } from '../../tools/ros_clients.mjs';
+import { ParameterClient, ParameterType } from '../../page/ros_clients.mjs';
 import { fromBase64, toBase64 } from '../rosbridge/convert.mjs';
 
 /** Split `/node.param` at the first dot after the node name. */

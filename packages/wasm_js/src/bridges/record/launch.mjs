@@ -2,7 +2,7 @@
 // Licensed under the Apache License, Version 2.0
 
 /**
- * Record and replay in `colcon-wasm run|launch|play` (tools/launch_host.mjs):
+ * Record and replay in `colcon-wasm run|launch|play` (launch/run_plan.mjs):
  * `plan.record` ({fd, topics}) and `plan.play` ({fd, rate, clock,
  * stop_after}), the host's ends of the launcher's pipes
  * (colcon_wasm/record/session.py).

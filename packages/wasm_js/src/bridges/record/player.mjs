@@ -40,7 +40,7 @@ export class Player {
   /**
    * @param {object} options
    * @param {import('../../runtime.mjs').Runtime} options.runtime
-   * @param {import('../../tools.mjs').Tools} options.tools
+   * @param {import('../../tools_process/main_thread.mjs').Tools} options.tools
    * @param {import('node:stream').Readable} options.source the pipe from the launcher
    * @param {number} [options.rate=1]
    * @param {?number} [options.clockHz] publish /clock at this rate

@@ -12,7 +12,7 @@
  * @module bridges/record/recorder
  */
 
-import { subscriptionQos } from '../../tools/graph.mjs';
+import { subscriptionQos } from '../../page/graph.mjs';
 import { jsonFrame, Kind, messageHead } from './frames.mjs';
 
 /** Bytes waiting for the pipe beyond which messages are dropped (and counted). */
@@ -24,7 +24,7 @@ export class Recorder {
   /**
    * @param {object} options
    * @param {import('../../runtime.mjs').Runtime} options.runtime
-   * @param {import('../../tools.mjs').Tools} options.tools
+   * @param {import('../../tools_process/main_thread.mjs').Tools} options.tools
    * @param {import('node:stream').Writable} options.sink the pipe to the launcher
    * @param {?string[]} options.topics only these topics (null: all)
    * @param {function(string, string): void} options.log (level, text)

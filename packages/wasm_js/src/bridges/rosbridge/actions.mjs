@@ -6,7 +6,7 @@
  *
  *  - send_action_goal / cancel_action_goal: the client is an action client
  *    of a bus action server (rcl_action's hidden `_action` services and
- *    topics, tools/ros_clients.mjs' ActionClient); the server answers with
+ *    topics, page/ros_clients.mjs' ActionClient); the server answers with
  *    action_feedback (when `feedback` is true) and one action_result;
  *  - advertise_action / unadvertise_action, action_feedback, action_result:
  *    the client is the action server. The bridge serves the action's
@@ -18,7 +18,7 @@
  * @module bridges/rosbridge/actions
  */
 
-import { ActionClient } from '../../tools/ros_clients.mjs';
+import { ActionClient } from '../../page/ros_clients.mjs';
 import { BusActionServer } from './action_server.mjs';
 import { stringifyJson } from './json.mjs';
 import { field, FieldError, GoalStatus, rosName } from './protocol.mjs';

@@ -3,7 +3,7 @@
 
 /**
  * What the rosbridge server and client do on the bus, on top of a Runtime's
- * tools process (tools.mjs): one bus subscription per topic shared by every
+ * tools process (tools_process/): one bus subscription per topic shared by every
  * WebSocket client that subscribes to it ("taps", messages decoded once),
  * publishers shared by the clients that advertise a topic (reference
  * counted, as rosbridge_library's publisher manager does), service calls,
@@ -15,7 +15,7 @@
  */
 
 import { normalizeTypeName } from '../../cdr.mjs';
-import { graphModel, nodeName, subscriptionQos } from '../../tools/graph.mjs';
+import { graphModel, nodeName, subscriptionQos } from '../../page/graph.mjs';
 
 /** A gid (4 words) as Runtime.graph() spells it. */
 export function gidHex(words) {
@@ -67,7 +67,7 @@ export class BusLink {
   /**
    * @param {object} options
    * @param {import('../../runtime.mjs').Runtime} options.runtime
-   * @param {import('../../tools.mjs').Tools} options.tools
+   * @param {import('../../tools_process/main_thread.mjs').Tools} options.tools
    * @param {string} [options.nodeName='rosbridge_websocket'] the tools node the endpoints belong to
    * @param {boolean} [options.ignoreLocal=false] taps do not hear this link's own publishers
    */
@@ -253,7 +253,7 @@ export class BusLink {
     return this.tools.serve({ service, type, node: this.node, qos }, onRequests);
   }
 
-  /** The bus interface of tools/ros_clients.mjs (ActionClient). */
+  /** The bus interface of page/ros_clients.mjs (ActionClient). */
   clientBus() {
     return {
       call: (service, type, bytes, timeoutMs) => this.call(service, type, bytes, timeoutMs),

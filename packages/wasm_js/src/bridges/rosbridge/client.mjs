@@ -43,7 +43,7 @@
  */
 
 import { normalizeTypeName } from '../../cdr.mjs';
-import { graphModel } from '../../tools/graph.mjs';
+import { graphModel } from '../../page/graph.mjs';
 import { BusLink } from './bus_link.mjs';
 import { ClientCalls } from './client_calls.mjs';
 import { BRIDGE_NODES, ClientTopics } from './client_topics.mjs';

@@ -12,7 +12,7 @@
  */
 
 import { normalizeTypeName } from '../../cdr.mjs';
-import { ActionClient } from '../../tools/ros_clients.mjs';
+import { ActionClient } from '../../page/ros_clients.mjs';
 import { BusActionServer } from './action_server.mjs';
 import { parseJson, stringifyJson } from './json.mjs';
 

@@ -2,7 +2,7 @@
 // Licensed under the Apache License, Version 2.0
 
 /**
- * The bridges of `colcon-wasm run|launch` (tools/launch_host.mjs): the
+ * The bridges of `colcon-wasm run|launch` (launch/run_plan.mjs): the
  * rosbridge server (`plan.rosbridge`: {host, port, token, capabilities,
  * limits}) and the client to a remote rosbridge server
  * (`plan.rosbridge_connect`: {url, token, allow, deny, limits}), started on

@@ -4,7 +4,7 @@
 /**
  * The remote side of a rosbridge client in the local graph views: the
  * nodes, topics and services the remote server's rosapi lists (polled by
- * the client, `client.remote`) are added to a graph model (tools/graph.mjs)
+ * the client, `client.remote`) are added to a graph model (page/graph.mjs)
  * with `remote: true` and the server's URL as their process, when the local
  * graph does not have them already.
  *

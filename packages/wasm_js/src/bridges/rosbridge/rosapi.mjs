@@ -13,7 +13,7 @@
  */
 
 import { normalizeTypeName } from '../../cdr.mjs';
-import { ParameterClient, ParameterType } from '../../tools/ros_clients.mjs';
+import { ParameterClient, ParameterType } from '../../page/ros_clients.mjs';
 import { parseJson, stringifyJson } from './json.mjs';
 
 export const ROSAPI_NODE = '/rosapi';

@@ -4,7 +4,7 @@
 /**
  * The Node.js side of `colcon-wasm run` and `colcon-wasm launch`.
  *
- *   node launch_host.mjs '<plan JSON>'
+ *   node run_plan.mjs '<plan JSON>'
  *
  * The plan (colcon_wasm/launch/runner.py) lists processes with absolute .js
  * paths, arguments and environment, an optional duration, topics to echo,
@@ -28,8 +28,8 @@ import { pathToFileURL } from 'node:url';
 
 import { TypeRegistry } from '../cdr.mjs';
 import { ComposableLoader } from './composable.mjs';
-import { graphModel, subscriptionQos } from './graph.mjs';
-import { formatYaml } from './yaml.mjs';
+import { graphModel, subscriptionQos } from '../page/graph.mjs';
+import { formatYaml } from '../page/yaml.mjs';
 
 const out = (line) => process.stdout.write(`${line}\n`);
 const err = (line) => process.stderr.write(`${line}\n`);

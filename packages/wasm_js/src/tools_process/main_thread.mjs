@@ -7,12 +7,12 @@
  * back in batches, one postMessage per wake-up, with their buffers
  * transferred.
  *
- * @module tools
+ * @module tools_process/main_thread
  */
 
-import { BusError } from './bus.mjs';
-import { HostWorker, siblingUrl } from './platform.mjs';
-import { FromTools, ToTools } from './protocol.mjs';
+import { BusError } from '../bus.mjs';
+import { HostWorker, siblingUrl } from '../platform.mjs';
+import { FromTools, ToTools } from '../protocol.mjs';
 
 function toError(e) {
   const err = new BusError(e.code || 1, e.message);
@@ -32,12 +32,12 @@ function toError(e) {
  */
 export class Tools {
   /**
-   * @param {import('./runtime.mjs').Runtime} runtime
+   * @param {import('../runtime.mjs').Runtime} runtime
    * @param {number} pid the bus process id of the tools worker
    * @returns {Promise<Tools>}
    */
   static async start(runtime, pid) {
-    const worker = await HostWorker.start(siblingUrl('tools_worker.mjs'), { name: 'wasm_js tools', type: 'module' });
+    const worker = await HostWorker.start(siblingUrl('tools_process/worker.mjs'), { name: 'wasm_js tools', type: 'module' });
     const tools = new Tools(runtime, pid, worker);
     await tools._call('init', [runtime.bus.handle, pid], ToTools.INIT);
     return tools;

@@ -6,11 +6,11 @@
  * doorbell and, on each wake-up, drains its subscriptions into one batch per
  * subscription and completes pending service calls.
  *
- * @module tools_worker
+ * @module tools_process/worker
  */
 
-import { BusClient, KIND_CLIENT, KIND_PUBLISHER, KIND_SERVICE, KIND_SUBSCRIPTION, TakeMode } from './bus_client.mjs';
-import { FromTools, ToTools } from './protocol.mjs';
+import { BusClient, KIND_CLIENT, KIND_PUBLISHER, KIND_SERVICE, KIND_SUBSCRIPTION, TakeMode } from '../bus_client.mjs';
+import { FromTools, ToTools } from '../protocol.mjs';
 
 let client = null;
 const subscriptions = new Set();

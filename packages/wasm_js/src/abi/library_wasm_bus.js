@@ -4,7 +4,7 @@
 // bus. Every executable linking wasm_cpp::wasm_cpp gets it through the
 // target's link options.
 //
-// Each thread of the executable has its own BusClient (src/bus_client.mjs):
+// Each thread of the executable has its own BusClient (share/wasm_js/src/bus_client.mjs):
 // - the main runtime thread uses the one the wasm_js host puts in
 //   Module.wasmBus = {client, moduleUrl}; when the executable runs alone
 //   (`node exe.js`), it imports bus_client.mjs and creates a private bus;
@@ -15,6 +15,10 @@
 //
 // Functions return wasm_cpp::Code values (0 = ok); the message of the last
 // failure of the calling thread is read with wasm_bus_last_error().
+//
+// Over 500 lines on purpose: Emscripten merges one library object per
+// --js-library file into every executable (no imports); each C function of
+// bus_abi.hpp is a short adapter to BusClient (src/bus_client.mjs).
 
 var LibraryWasmBus = {
   // addRunDependency / removeRunDependency come from the preamble (always present).
@@ -33,6 +37,19 @@ var LibraryWasmBus = {
     // Unused since the wait loop services the main thread's call queue itself
     // (BusClient.service); kept false so waits never return -1.
     returnAfterWake: false,
+
+    // Word offsets of wasm_bus_take_info and of the event status words, as in
+    // src/abi/bus_abi.mjs and packages/wasm_cpp (tests/test_bus_abi.py checks
+    // that the three agree).
+    TAKE_INFO: {
+      SOURCE_MS_F64: 0, RECEIVED_MS_F64: 2, PUB_SEQ_LO: 4, PUB_SEQ_HI: 5, RECV_SEQ_LO: 6,
+      RECV_SEQ_HI: 7, GID: 8, REQ_SEQ_LO: 12, REQ_SEQ_HI: 13, SAME_PROCESS: 14, LENGTH: 15,
+      DATA: 16, CAPACITY: 17, WORDS: 18,
+    },
+    EVENT_STATUS: {
+      CHANGED: 0, TOTAL: 1, CHANGE: 2, ALIVE: 3, NOT_ALIVE: 4, ALIVE_CHANGE: 5,
+      NOT_ALIVE_CHANGE: 6, POLICY: 7, WORDS: 8,
+    },
 
     // Views of the wasm heap, renewed when it grows. Each HEAP* access in a
     // pthread build checks wasmMemory.buffer (~60 ns); hot paths use these.
@@ -356,10 +373,12 @@ var LibraryWasmBus = {
   wasm_bus_take: function(ep, mode, allocFn, deallocFn, state, info) {
     try {
       var c = WasmBus.client;
-      WasmBus.heapFor(info + 72);
+      var T = WasmBus.TAKE_INFO;
+      var end = info + T.WORDS * 4;
+      WasmBus.heapFor(end);
       // The caller's reusable buffer (info.data, info.capacity), if any.
-      var buffer = WasmBus.hi32[(info >> 2) + 16];
-      var capacity = buffer ? WasmBus.hi32[(info >> 2) + 17] : -1;
+      var buffer = WasmBus.hi32[(info >> 2) + T.DATA];
+      var capacity = buffer ? WasmBus.hi32[(info >> 2) + T.CAPACITY] : -1;
       for (;;) {
         var len = c.takeBegin(ep, mode);
         if (len < 0) return 0;
@@ -375,27 +394,27 @@ var LibraryWasmBus = {
             return -10;
           }
         }
-        WasmBus.heapFor(Math.max(ptr + len, info + 72)); // the allocator may have grown the heap
+        WasmBus.heapFor(Math.max(ptr + len, end)); // the allocator may have grown the heap
         if (c.takeCopy(WasmBus.memoryCopy() ? null : WasmBus.hu8, ptr)) {
           var i = c.info;
           var f64 = WasmBus.hf64;
           var w = WasmBus.hi32;
           var o = info >> 2;
-          f64[info >> 3] = i.sourceTime;
-          f64[(info >> 3) + 1] = i.receivedTime;
-          w[o + 4] = i.pubSeqLo;
-          w[o + 5] = i.pubSeqHi;
-          w[o + 6] = i.recvSeqLo;
-          w[o + 7] = i.recvSeqHi;
-          w[o + 8] = i.gid[0];
-          w[o + 9] = i.gid[1];
-          w[o + 10] = i.gid[2];
-          w[o + 11] = i.gid[3];
-          w[o + 12] = i.reqLo;
-          w[o + 13] = i.reqHi;
-          w[o + 14] = i.sameProcess ? 1 : 0;
-          w[o + 15] = len;
-          w[o + 16] = ptr;
+          f64[(o + T.SOURCE_MS_F64) >> 1] = i.sourceTime;
+          f64[(o + T.RECEIVED_MS_F64) >> 1] = i.receivedTime;
+          w[o + T.PUB_SEQ_LO] = i.pubSeqLo;
+          w[o + T.PUB_SEQ_HI] = i.pubSeqHi;
+          w[o + T.RECV_SEQ_LO] = i.recvSeqLo;
+          w[o + T.RECV_SEQ_HI] = i.recvSeqHi;
+          w[o + T.GID] = i.gid[0];
+          w[o + T.GID + 1] = i.gid[1];
+          w[o + T.GID + 2] = i.gid[2];
+          w[o + T.GID + 3] = i.gid[3];
+          w[o + T.REQ_SEQ_LO] = i.reqLo;
+          w[o + T.REQ_SEQ_HI] = i.reqHi;
+          w[o + T.SAME_PROCESS] = i.sameProcess ? 1 : 0;
+          w[o + T.LENGTH] = len;
+          w[o + T.DATA] = ptr;
           return 1;
         }
         if (ptr !== buffer) WasmBus.tableFn(1, deallocFn)(ptr, state);
@@ -482,14 +501,15 @@ var LibraryWasmBus = {
       WasmBus.heap();
       var h = WasmBus.hi32;
       var w = status >> 2;
-      h[w] = s.changed ? 1 : 0;
-      h[w + 1] = s.total;
-      h[w + 2] = s.change;
-      h[w + 3] = s.alive;
-      h[w + 4] = s.notAlive;
-      h[w + 5] = s.aliveChange;
-      h[w + 6] = s.notAliveChange;
-      h[w + 7] = s.policy;
+      var S = WasmBus.EVENT_STATUS;
+      h[w + S.CHANGED] = s.changed ? 1 : 0;
+      h[w + S.TOTAL] = s.total;
+      h[w + S.CHANGE] = s.change;
+      h[w + S.ALIVE] = s.alive;
+      h[w + S.NOT_ALIVE] = s.notAlive;
+      h[w + S.ALIVE_CHANGE] = s.aliveChange;
+      h[w + S.NOT_ALIVE_CHANGE] = s.notAliveChange;
+      h[w + S.POLICY] = s.policy;
       return 0;
     } catch (e) {
       return WasmBus.fail(e);
