@@ -9,6 +9,7 @@ a pure Python host tool named by a recipe overlay, built with the real colcon
 and Emscripten in one temporary workspace; the tests run in order.
 """
 
+import itertools
 import json
 import os
 from pathlib import Path
@@ -21,6 +22,8 @@ import pytest
 HOST_TOOL_SETUP = (
     'from setuptools import setup\n'
     "setup(name='calc_tool', version='0.1.0', py_modules=['calc_tool'])\n")
+
+_RUNS = itertools.count(1)
 
 
 @pytest.fixture(scope='module')
@@ -39,10 +42,13 @@ def workspace(tmp_path_factory):
 
 def build(workspace, *args, check=True):
     """Build with --wasm; return the packages built and the skipped ones."""
+    # a log base of its own: two builds in one second would share colcon's
+    # timestamped log folder
+    log_base = workspace / 'log' / f'run{next(_RUNS)}'
     completed = colcon(
-        workspace, 'build', '--wasm', '--wasm-recipe',
+        workspace, '--log-base', str(log_base), 'build', '--wasm', '--wasm-recipe',
         str(workspace / 'overlay.yaml'), *args, check=check)
-    log = (workspace / 'log' / 'latest_build' / 'logger_all.log').read_text()
+    log = (log_base / 'latest_build' / 'logger_all.log').read_text()
     skipped = {name for name in ('calc_lib', 'calc_app', 'calc_tool')
                if f"'{name}' is up to date" in log}
     return completed, skipped

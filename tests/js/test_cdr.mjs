@@ -106,7 +106,8 @@ test('type names: DDS spelling and package/Type are accepted', () => {
   assert.equal(normalizeTypeName('std_msgs::msg::dds_::String_'), 'std_msgs/msg/String');
   assert.equal(normalizeTypeName('std_msgs/String'), 'std_msgs/msg/String');
   assert.ok(registry.has('cdr_test_msgs::msg::dds_::Inner_'));
-  assert.deepEqual(registry.service('cdr_test_msgs/srv/AddTwoInts'), {
+  const { request, response } = registry.service('cdr_test_msgs/srv/AddTwoInts');
+  assert.deepEqual({ request, response }, {
     request: 'cdr_test_msgs/srv/AddTwoInts_Request',
     response: 'cdr_test_msgs/srv/AddTwoInts_Response',
   });
