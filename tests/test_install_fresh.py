@@ -62,6 +62,13 @@ NOT_RUN = {
         'needs a rosbridge server: tests/test_rosbridge_client.py',
     'colcon-wasm launch my_pkg robot.launch.xml --foxglove':
         'Foxglove server: tests/test_foxglove_server.py (demo), tests/test_foxglove_rclcpp.py',
+    'colcon-wasm launch my_pkg robot.launch.xml --record':
+        'recording: tests/test_record.py (the demo talker and camera)',
+    'colcon-wasm run demo_nodes talker --record':
+        'recording a topic: tests/test_record.py (run --record --record-topic)',
+    'colcon-wasm play ': 'replay into nodes: tests/test_record.py (bags written by rosbags)',
+    'colcon-wasm launch my_pkg robot.launch.xml --play':
+        'launch --play --clock: tests/test_record.py',
 }
 
 COMMAND_PREFIXES = ('colcon', 'colcon-wasm', 'blasm', 'scripts/', 'node ', 'pip ',
