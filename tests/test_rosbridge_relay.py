@@ -145,7 +145,8 @@ def test_roslibjs_and_roslibpy_through_the_relay(served):
     ]
     with ThreadPoolExecutor(1) as pool:
         page = pool.submit(served.run, tab, 90000)
-        node_script('rosbridge_roslib.mjs', 'ready', served.rosbridge_url, '/chatter', timeout=90)
+        node_script('rosbridge_roslib.mjs', 'ready', served.rosbridge_url, '/chatter',
+                    '/add_server', '/add', timeout=90)
         js = node_script('rosbridge_roslib.mjs', 'basic', served.rosbridge_url)
         py = subprocess.run(
             [sys.executable, str(Path(__file__).resolve().parent / 'rosbridge_roslibpy.py'),

@@ -42,13 +42,19 @@ function collect(ros, options, count, ms) {
 const scenarios = {
   /** Wait (up to 60 s) until the server lists a topic (argv: TOPIC): the nodes behind it are up. */
   async ready() {
-    const [topic] = process.argv.slice(4);
+    // a topic, and optionally a node and a service, listed by rosapi
+    const [topic, node, service] = process.argv.slice(4);
     const ros = await connect();
     const deadline = Date.now() + 60000;
     for (;;) {
       const { topics } = await cb((ok, fail) => ros.getTopics(ok, fail));
-      if (topics.includes(topic)) break;
-      if (Date.now() > deadline) throw new Error(`${topic} was not listed within 60 s (topics: ${topics.join(', ')})`);
+      const nodes = node ? await cb((ok, fail) => ros.getNodes(ok, fail)) : [];
+      const services = service ? await cb((ok, fail) => ros.getServices(ok, fail)) : [];
+      if (topics.includes(topic) && (!node || nodes.includes(node)) && (!service || services.includes(service))) break;
+      if (Date.now() > deadline) {
+        throw new Error(`${topic}, ${node}, ${service} were not all listed within 60 s (topics: ${topics.join(', ')}; `
+          + `nodes: ${nodes.join(', ')}; services: ${services.join(', ')})`);
+      }
       await sleep(250);
     }
     ros.close();
