@@ -141,8 +141,8 @@ class CborWriter:
         return self.out.getvalue()
 
 
-def cbor_raw_publish(topic, cdr, secs, nsecs, ttl=None):
-    """Return rosbridge's cbor-raw ``publish`` of CDR bytes (topics.mjs's form, ``ttl`` last)."""
+def _publish_head(topic, ttl):
+    """Start a CBOR ``publish`` op: its map head and keys up to ``msg`` (``ttl`` comes last)."""
     w = CborWriter()
     w.head(5, 3 if ttl is None else 4)
     w.string('op')
@@ -150,6 +150,19 @@ def cbor_raw_publish(topic, cdr, secs, nsecs, ttl=None):
     w.string('topic')
     w.string(topic)
     w.string('msg')
+    return w
+
+
+def _publish_tail(w, ttl):
+    if ttl is not None:
+        w.string('ttl')
+        w.value(ttl)
+    return w.result()
+
+
+def cbor_raw_publish(topic, cdr, secs, nsecs, ttl=None):
+    """Return rosbridge's cbor-raw ``publish`` of CDR bytes (topics.mjs's form, ``ttl`` last)."""
+    w = _publish_head(topic, ttl)
     w.head(5, 3)
     w.string('secs')
     w.int(secs)
@@ -157,10 +170,7 @@ def cbor_raw_publish(topic, cdr, secs, nsecs, ttl=None):
     w.int(nsecs)
     w.string('bytes')
     w.byte_string(cdr)
-    if ttl is not None:
-        w.string('ttl')
-        w.value(ttl)
-    return w.result()
+    return _publish_tail(w, ttl)
 
 
 class Forms:
@@ -175,18 +185,9 @@ class Forms:
 
     def cbor_publish(self, topic, type_name, msg, ttl=None):
         """Return the bytes of a ``publish`` op with ``msg`` in rosbridge's cbor form."""
-        w = CborWriter()
-        w.head(5, 3 if ttl is None else 4)
-        w.string('op')
-        w.string('publish')
-        w.string('topic')
-        w.string(topic)
-        w.string('msg')
+        w = _publish_head(topic, ttl)
         self._message(w, normalize(type_name), msg, '')
-        if ttl is not None:
-            w.string('ttl')
-            w.value(ttl)
-        return w.result()
+        return _publish_tail(w, ttl)
 
     def cbor_message(self, type_name, msg):
         """Return the rosbridge cbor form of one message (a JSON object) alone."""
