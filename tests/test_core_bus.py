@@ -25,6 +25,7 @@ CHECKS = [
     'zombie_ring_is_drained_then_freed',
     'dying_writer_is_still_read',
     'bus_grows_for_large_messages',
+    'stale_views_after_another_thread_grew_the_bus',
     'large_copies_keep_every_byte',
     'freed_blocks_wait_before_reuse',
     'qos_compatibility_rules',

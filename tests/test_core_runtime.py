@@ -217,7 +217,7 @@ def test_colcon_wasm_run_gives_the_node_its_standard_input():
 
 @pytest.mark.parametrize('platform', ['node', 'chromium'])
 def test_warm_host_boots_the_pthread_pool_ahead(platform):
-    """A pthread program on a warm host gets its pool workers booted ahead."""
+    """A pthread program on a warm worker gets its pool workers booted ahead."""
     run = harness.run(platform, 'prestarted_pthreads')
     why = harness.explain(run)
     extra = run['extra']
@@ -225,7 +225,7 @@ def test_warm_host_boots_the_pthread_pool_ahead(platform):
         # the program's thread ran and woke main() through the bus
         assert harness.results(run, name)['guard_ready'] == '1', why
         assert harness.exit_of(run, name)['code'] == 0, why
-    # the toolchain's default pool is 4 workers; all came from the warm host,
+    # the toolchain's default pool is 4 workers; all came from the warm worker,
     # also when spawn() took the host before it had finished warming up
     assert extra['ready_prestarted'] == 4, why
     # 'settled' first waited 300 ms on the bus: that was its settling (its

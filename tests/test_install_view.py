@@ -190,7 +190,7 @@ def test_a_runtime_without_views_is_reported(install, tmp_path):
     src = base / 'wasm_js' / 'share' / 'wasm_js' / 'src'
     shutil.copytree(RUNTIME, src)
     for name, what, instead in (('runtime.mjs', 'static get features()', 'static get no()'),
-                                ('host_common.mjs', 'mountReadOnlyViews(msg.mounts,', '(')):
+                                ('program_worker.mjs', 'mountReadOnlyViews(msg.mounts,', '(')):
         text = (src / name).read_text()
         assert what in text
         (src / name).write_text(text.replace(what, instead))

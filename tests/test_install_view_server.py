@@ -297,7 +297,7 @@ def test_refusals_say_why(server, path, status, says):
 def test_spawn_checks_its_mounts(options, message):
     script = (
         'const { Runtime } = await import(process.argv[1]);'
-        'const rt = await Runtime.create({ warmHosts: 0 });'
+        'const rt = await Runtime.create({ warmWorkers: 0 });'
         "try { await rt.spawn({ url: '/nowhere/p.js', ...JSON.parse(process.argv[2]) });"
         " console.log('spawned'); }"
         ' catch (e) { console.log(e.message); } finally { await rt.close(); }')

@@ -22,7 +22,8 @@ def test_tools_helpers(tmp_path):
     types = tmp_path / 'types.json'
     types.write_text(json.dumps(cdr_fastcdr.load_types()), encoding='utf-8')
     result = subprocess.run(
-        [node, '--test', '--test-reporter=tap', str(REPO / 'tests' / 'js' / 'test_tools.mjs')],
+        [node, '--test', '--test-reporter=tap',
+         str(REPO / 'tests' / 'js' / 'test_page_tools.mjs')],
         env={'CDR_TYPES': str(types), 'PATH': '/usr/bin:/bin'},
         capture_output=True, text=True, timeout=120)
     assert result.returncode == 0, result.stdout[-6000:] + result.stderr[-2000:]

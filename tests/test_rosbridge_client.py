@@ -112,7 +112,7 @@ def test_server_restarted_mid_stream_reliable_messages_arrive_in_order(install, 
     wasm_js = _runtime_dir(install)
     types = _types(install, 'std_msgs')
     client = subprocess.Popen(
-        ['node', str(JS / 'rosbridge_client_host.mjs'), first.url, str(wasm_js), '12', str(types)],
+        ['node', str(JS / 'rosbridge_client_side.mjs'), first.url, str(wasm_js), '12', str(types)],
         stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, cwd=str(JS))
     try:
         first.wait_for(re.compile(r'HEARD seq 1\d\d'), timeout=30)

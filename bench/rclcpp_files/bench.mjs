@@ -136,7 +136,7 @@ class Bench {
 
   /**
    * Node start: spawn() → the first message of bench_hello, seen by the tools
-   * worker; on a warm host (its pthread pool booted ahead), with the shared module.
+   * worker; on a warm worker (its pthread pool booted ahead), with the shared module.
    */
   async start(url, args, type) {
     const rt = await this.runtime();

@@ -53,12 +53,12 @@ class Bench {
 
   /**
    * A runtime for one measurement. Only the node start measure keeps a warm
-   * host: a warm host boots a worker and its pthread pool again after each
+   * host: a warm worker boots a worker and its pthread pool again after each
    * spawn, which would run beside a latency or throughput measurement.
    */
-  async runtime(warmHosts = 0) {
+  async runtime(warmWorkers = 0) {
     const rt = await this.env.Runtime.create({
-      maxMessageBytes: 2 * 1024 * 1024, maxBytes: 1024 * 1024 * 1024, warmHosts, wasmMemory: this.wasmMemory,
+      maxMessageBytes: 2 * 1024 * 1024, maxBytes: 1024 * 1024 * 1024, warmWorkers, wasmMemory: this.wasmMemory,
     });
     this.busIsMemory = rt.bus.memory !== null;
     return rt;
@@ -156,7 +156,7 @@ class Bench {
   /**
    * Node start: the first message's source timestamp minus the moment spawn() was called.
    * mode 'cold': a new worker compiles the .wasm itself; 'shared': a new worker
-   * instantiates the runtime's compiled module; 'warm': a warm host worker
+   * instantiates the runtime's compiled module; 'warm': a warm program worker
    * (runtime modules loaded) instantiates the compiled module.
    */
   async oursStart(mode, exe = this.env.exe) {
@@ -173,7 +173,7 @@ class Bench {
   async rawWorkers(n) {
     const workers = [];
     for (let i = 0; i < n; i++) {
-      workers.push(await this.env.HostWorker.start(new URL('raw_ring_worker.mjs', this.env.here).href, { type: 'module', name: 'raw ring' }));
+      workers.push(await this.env.ProgramWorker.start(new URL('raw_ring_worker.mjs', this.env.here).href, { type: 'module', name: 'raw ring' }));
     }
     return workers;
   }
@@ -234,7 +234,7 @@ class Bench {
     const workers = [];
     const done = [];
     for (let i = 0; i < configs.length; i++) {
-      const w = await this.env.HostWorker.start(new URL('poll_worker.mjs', this.env.here).href, { type: 'module', name: 'poll' });
+      const w = await this.env.ProgramWorker.start(new URL('poll_worker.mjs', this.env.here).href, { type: 'module', name: 'poll' });
       done.push(new Promise((resolve, reject) => {
         w.on('error', (e) => reject(new Error(`poll worker failed: ${e.message}`)));
         w.on('message', (m) => {
@@ -281,7 +281,7 @@ class Bench {
 
 /**
  * Run every measurement; returns a JSON-able object.
- * @param {object} env {Runtime, HostWorker, exe: URL/path of bench_node.js, here: URL of this folder}
+ * @param {object} env {Runtime, ProgramWorker, exe: URL/path of bench_node.js, here: URL of this folder}
  * @param {object} [options] {quick: fewer/lower counts, parts: what to measure,
  *   wasmMemory: false for a bus that is a SharedArrayBuffer everywhere}
  */

@@ -12,7 +12,7 @@ import { pathToFileURL } from 'node:url';
 const [srcDir, exe, exeNoPthread, ...flags] = process.argv.slice(2);
 const src = pathToFileURL(path.resolve(srcDir)).href + '/';
 const { Runtime } = await import(new URL('index.mjs', src).href);
-const { HostWorker } = await import(new URL('platform.mjs', src).href);
+const { ProgramWorker } = await import(new URL('platform.mjs', src).href);
 const { runAll } = await import('./bench.mjs');
 const only = flags.filter((f) => f.startsWith('--only=')).flatMap((f) => f.slice(7).split(','));
 // If a measurement never settles, say so instead of exiting silently (code 13).
@@ -21,7 +21,7 @@ process.on('exit', (code) => {
   if (code === 13) process.stderr.write('run_node.mjs: a measurement never finished\n');
 });
 const result = await runAll({
-  Runtime, HostWorker, exe: path.resolve(exe), exeNoPthread: path.resolve(exeNoPthread),
+  Runtime, ProgramWorker, exe: path.resolve(exe), exeNoPthread: path.resolve(exeNoPthread),
   here: new URL('./', import.meta.url).href,
   log: (m) => process.stderr.write(`[node] ${m}\n`),
   trace: process.env.BENCH_TRACE ? (m) => process.stderr.write(`[trace] ${m}\n`) : undefined,

@@ -166,6 +166,42 @@ const CHECKS = {
   },
 
   /**
+   * A process whose views predate another's growth of the bus (the tools
+   * worker while a camera publishes large frames) creates endpoints and
+   * publishes: its rings and blocks lie beyond its views, and nothing is lost.
+   */
+  async stale_views_after_another_thread_grew_the_bus() {
+    const { bus, clients: [a, b, c] } = world(3, { initialBytes: 4 << 20, maxBytes: 256 << 20, maxMessageBytes: 16 << 20 });
+    const sink = c.createNode({ name: 'sink' }).index;
+    const bigSub = endpoint(c, KIND_SUBSCRIPTION, sink, '/camera', { history: 'keep_all' });
+    const camera = endpoint(a, KIND_PUBLISHER, a.createNode({ name: 'camera' }).index, '/camera', { history: 'keep_all' });
+    const frame = new Uint8Array(12 << 20).fill(5);
+    a.publish(camera, frame);
+    assert.ok(bus.byteLength() > b.bus.u8.length, 'b has not seen the growth yet');
+    // b makes a node and many endpoints: their records and rings come from
+    // the arena's top (beyond b's views) and from freed blocks.
+    const nb = b.createNode({ name: 'tools' }).index;
+    const subs = [];
+    const pubs = [];
+    for (let i = 0; i < 40; i++) {
+      subs.push(endpoint(c, KIND_SUBSCRIPTION, sink, `/t${i}`, { history: 'keep_all' }));
+      pubs.push(endpoint(b, KIND_PUBLISHER, nb, `/t${i}`, { history: 'keep_all' }));
+    }
+    for (let i = 0; i < pubs.length; i++) b.publish(pubs[i], bytes(i, 1, 2, 3));
+    const second = new Uint8Array(1 << 20).fill(9);
+    b.publish(pubs[0], second);
+    for (let i = 0; i < subs.length; i++) {
+      const m = c.take(subs[i]);
+      assert.ok(m, `message on /t${i} taken`);
+      assert.deepEqual([...m], [i, 1, 2, 3], `/t${i}`);
+    }
+    const big = c.take(subs[0]);
+    assert.equal(big.length, second.length);
+    assert.equal(big[big.length - 1], 9);
+    assert.equal(c.take(bigSub).length, frame.length);
+  },
+
+  /**
    * Copies above the small-copy loop's 512 bytes keep every byte at any
    * alignment, the tail of an odd length included, and write nothing around
    * the destination.

@@ -412,9 +412,9 @@ const SCENARIOS = {
 };
 
 SCENARIOS.prestarted_pthreads = async (ctx) => {
-  // A warm host boots the program's pthread pool ahead; its threads work.
+  // A warm worker boots the program's pthread pool ahead; its threads work.
   // Three hosts: warm and ready, taken while still warming up, and one that
-  // boots no pthread workers (the program starts its own). On a warm host
+  // boots no pthread workers (the program starts its own). On a warm worker
   // the pool loads the program when main() settles or a thread starts,
   // whichever comes first: 'ready' starts its thread at once, 'settled'
   // after a first wait on the bus.
@@ -434,7 +434,7 @@ SCENARIOS.prestarted_pthreads = async (ctx) => {
   };
   await main.warm();
   await runOn(main, 'ready');
-  // no warm() here: the Runtime booted the next warm host when 'ready' settled
+  // no warm() here: the Runtime booted the next warm worker when 'ready' settled
   await runOn(main, 'settled', { 'wait-first-ms': 300 });
   const early = await ctx.Runtime.create({ maxMessageBytes: 4 * 1024 * 1024, maxBytes: 64 * 1024 * 1024 });
   try {

@@ -1,6 +1,6 @@
 // Copyright 2026 The colcon-wasm authors. Licensed under the Apache License 2.0.
 //
-// Loaded with importScripts() by the browser's classic workers (web_host.js,
+// Loaded with importScripts() by the browser's classic workers (program_worker_web.js,
 // pthread_stub_web.js): run a script the Runtime prefetched as text, or load
 // it by URL.
 'use strict';

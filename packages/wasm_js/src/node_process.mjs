@@ -8,7 +8,7 @@
  */
 
 import { BusError, Code, waitAsyncAlive } from './bus.mjs';
-import { FromHost } from './protocol.mjs';
+import { FromWorker } from './protocol.mjs';
 import { DEFAULT_STDIN_CAPACITY, StdinPipe } from './stdin_pipe.mjs';
 
 const SEVERITY_RE = /^\[(DEBUG|INFO|WARN|ERROR|FATAL)\]/;
@@ -72,12 +72,12 @@ export class NodeProcess {
     /** performance.now() when the glue was loaded (main() about to run). */
     this.startedAt = null;
     /**
-     * How many of its pthread pool workers were booted ahead by a warm host
-     * (known once started; 0 for a program without threads or a cold host).
+     * How many of its pthread pool workers were booted ahead by a warm worker
+     * (known once started; 0 for a program without threads or a cold worker).
      */
     this.prestartedPthreadWorkers = 0;
     /**
-     * True when the host loaded the glue from the script the Runtime
+     * True when the worker loaded the glue from the script the Runtime
      * prefetched (browsers, shared module), false when it loaded it by URL.
      */
     this.glueFromMemory = false;
@@ -108,7 +108,7 @@ export class NodeProcess {
 
   _onMessage(m) {
     if (!m || typeof m !== 'object') return;
-    if (m.type === FromHost.LOG) {
+    if (m.type === FromWorker.LOG) {
       const onLog = this._options.onLog;
       if (onLog) {
         try {
@@ -118,14 +118,14 @@ export class NodeProcess {
           console.error(`onLog of '${this.name}' threw:`, e);
         }
       }
-    } else if (m.type === FromHost.STARTED) {
+    } else if (m.type === FromWorker.STARTED) {
       this.startedAt = performance.now();
       this.prestartedPthreadWorkers = m.prestartedPthreadWorkers || 0;
       this.glueFromMemory = !!m.glueFromMemory;
-    } else if (m.type === FromHost.SETTLED) {
+    } else if (m.type === FromWorker.SETTLED) {
       if (this.settledAt === null && !this._done) this.settledAt = performance.now();
       this._resolveSettled();
-    } else if (m.type === FromHost.EXIT) {
+    } else if (m.type === FromWorker.EXIT) {
       this.memoryCopy = !!m.memoryCopy;
       this._finish({ code: m.code, crashed: !!m.crashed, reason: m.reason || '' });
     }

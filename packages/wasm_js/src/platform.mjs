@@ -24,17 +24,17 @@ async function loadNode() {
 /**
  * A worker with browser-style events on both platforms.
  */
-export class HostWorker {
+export class ProgramWorker {
   /**
    * Start a worker.
    * @param {URL|string} url the worker script
    * @param {object} [options]
    * @param {string} [options.name] a name for debuggers
    * @param {'classic'|'module'} [options.type] browser script type
-   * @returns {Promise<HostWorker>}
+   * @returns {Promise<ProgramWorker>}
    */
   static async start(url, options = {}) {
-    const w = new HostWorker();
+    const w = new ProgramWorker();
     if (isNode) {
       await loadNode();
       const file = String(url).startsWith('file:') ? nodeUrl.fileURLToPath(String(url)) : String(url);

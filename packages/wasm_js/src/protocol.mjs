@@ -7,25 +7,25 @@
  * @module protocol
  */
 
-/** Runtime -> host worker. */
-export const ToHost = Object.freeze({
+/** Runtime -> program worker. */
+export const ToWorker = Object.freeze({
   /**
-   * {type, hostModuleUrl, pthreadWorkers, busModuleUrl}: import the host module
-   * and boot `pthreadWorkers` pthread workers now (a warm, idle host); answered by READY
+   * {type, workerModuleUrl, pthreadWorkers, busModuleUrl}: import the program worker module
+   * and boot `pthreadWorkers` pthread workers now (a warm, idle worker); answered by READY
    */
   PRELOAD: 'preload',
   /**
    * {type, bus, pid, url, wasmUrl, glueFile, args, env, name, wasmModule, stdin (SharedArrayBuffer
    * of a StdinPipe, or null), files, mounts ([{path, url?}]: read-only views, see view_fs.mjs),
    * scripts (absolute URL -> text: the glue and pthread worker script, prefetched in browsers;
-   * may be empty), busModuleUrl, hostModuleUrl}
+   * may be empty), busModuleUrl, workerModuleUrl}
    */
   START: 'start',
 });
 
-/** Host worker -> Runtime. */
-export const FromHost = Object.freeze({
-  /** {type} the host module is imported; the host waits for START */
+/** Program worker -> Runtime. */
+export const FromWorker = Object.freeze({
+  /** {type} the program worker module is imported; the worker waits for START */
   READY: 'ready',
   /** {type, stream: 'stdout'|'stderr', text} one line */
   LOG: 'log',
@@ -64,7 +64,7 @@ export const FromTools = Object.freeze({
 });
 
 /**
- * How a host starts the crash reason of an uncaught C++ exception (the
+ * How a program worker starts the crash reason of an uncaught C++ exception (the
  * worker's error carries it when the EXIT message has not arrived first).
  */
 export const UNCAUGHT_EXCEPTION = 'uncaught exception of type ';

@@ -1,24 +1,24 @@
 // Copyright 2026 The colcon-wasm authors. Licensed under the Apache License 2.0.
 
 /**
- * Pre-started pthread workers for a warm host.
+ * Pre-started pthread workers for a warm worker.
  *
  * Emscripten does not run a pthread program's main() before its whole pool
  * (`-sPTHREAD_POOL_SIZE`, 4 by default) has booted a worker each, loaded the
  * glue into it and instantiated the module: ~150 ms on two cores, most of it
- * booting workers (a Node.js worker thread takes ~30 ms to boot). A warm host
+ * booting workers (a Node.js worker thread takes ~30 ms to boot). A warm worker
  * boots these workers ahead, as stubs that have also imported the bus
- * client. While the glue loads, host_common.mjs hands Emscripten a stub for
+ * client. While the glue loads, program_worker.mjs hands Emscripten a stub for
  * each `new Worker(url)` it makes for its pool (withPthreadStubs); a stub
  * told `url` (Emscripten's worker script) loads it, and from then on it is
  * Emscripten's worker.
  *
  * Stub protocol (pthread_stub_node.mjs, pthread_stub_web.js): one message
  * each way at most, so that nothing of ours reaches Emscripten's handlers:
- *   host -> stub {colconWasmPreload: busModuleUrl, state: Int32Array(1)}
+ *   worker -> stub {colconWasmPreload: busModuleUrl, state: Int32Array(1)}
  *     the stub imports the module, then stores 1 (ready) or 2 (failed) in
  *     state[0] (and, failed and not yet taken, posts {colconWasmError})
- *   host -> stub {colconWasmWorkerScript: url, scripts}
+ *   worker -> stub {colconWasmWorkerScript: url, scripts}
  *     the stub loads url (once); its onmessage takes over. `scripts`
  *     (absolute URL -> text, browsers) are the worker script and the glue,
  *     prefetched by the Runtime: the stub's importScripts() runs those from
@@ -55,7 +55,7 @@ export class PthreadPool {
     this.taken = 0;
     /**
      * Workers of stubs that were ready when taken: booted, so they load and
-     * run what they are sent with no help from the host's event loop.
+     * run what they are sent with no help from the worker's event loop.
      * @type {WeakSet<object>}
      */
     this.readyWorkers = new WeakSet();

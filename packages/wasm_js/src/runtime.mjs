@@ -1,7 +1,7 @@
 // Copyright 2026 The colcon-wasm authors. Licensed under the Apache License 2.0.
 
 /**
- * The Runtime: owns the bus of a page (or Node.js process), hosts each node
+ * The Runtime: owns the bus of a page (or Node.js process), runs each node
  * executable in its own worker, reports logs and exits, cleans up after dead
  * nodes and tells the page about graph changes. Runs on the main thread and
  * never blocks it.
@@ -11,8 +11,8 @@
 
 import { Bus, BusError, Code } from './bus.mjs';
 import { PROC_KIND_NODE, PROC_KIND_RUNTIME, PROC_KIND_TOOLS } from './layout.mjs';
-import { compileWasm, fetchScript, HostWorker, isNode, resolveUrl, siblingUrl } from './platform.mjs';
-import { FromHost, ToHost, UNCAUGHT_EXCEPTION } from './protocol.mjs';
+import { compileWasm, fetchScript, ProgramWorker, isNode, resolveUrl, siblingUrl } from './platform.mjs';
+import { FromWorker, ToWorker, UNCAUGHT_EXCEPTION } from './protocol.mjs';
 import { checkedFiles, checkedMounts } from './spawn_options.mjs';
 import { Tools } from './tools_process/main_thread.mjs';
 import { gidHex, makeStdinPipe, NodeProcess, severityOf, stripAnsi } from './node_process.mjs';
@@ -34,7 +34,7 @@ const ISOLATION_HELP =
   '(`colcon-wasm serve` does), and load it over http://localhost or https.';
 
 /**
- * At most this long after a spawn took a warm host, the Runtime boots the
+ * At most this long after a spawn took a warm worker, the Runtime boots the
  * next one even if the new program has not settled yet (main() computing
  * without waiting on the bus).
  */
@@ -43,10 +43,10 @@ const REFILL_AFTER_MS = 200;
 /**
  * The middleware runtime of one page or Node.js process.
  */
-/** Start a host worker (node_host.mjs or web_host.js). */
-function startHostWorker() {
-  return HostWorker.start(
-    isNode ? siblingUrl('node_host.mjs') : siblingUrl('web_host.js'), { name: 'wasm_js host', type: 'classic' });
+/** Start a program worker (program_worker_node.mjs or program_worker_web.js). */
+function startProgramWorker() {
+  return ProgramWorker.start(
+    isNode ? siblingUrl('program_worker_node.mjs') : siblingUrl('program_worker_web.js'), { name: 'wasm_js program worker', type: 'classic' });
 }
 
 /**
@@ -101,9 +101,9 @@ export class Runtime {
    * @param {number} [options.initialBytes=16 MiB]
    * @param {number} [options.maxProcesses] @param {number} [options.maxNodes]
    * @param {number} [options.maxEndpoints] @param {number} [options.maxLinks]
-   * @param {number} [options.warmHosts=1] idle host workers kept ready (runtime modules
+   * @param {number} [options.warmWorkers=1] idle program workers kept ready (runtime modules
    *   loaded), so that spawn() does not wait for a worker to boot
-   * @param {number} [options.warmPthreadWorkers] pthread workers each warm host boots
+   * @param {number} [options.warmPthreadWorkers] pthread workers each warm worker boots
    *   ahead for a pthread program's pool; default: the `-sPTHREAD_POOL_SIZE` the
    *   install space was built with (its manifest), else 4; 0: none (a program then
    *   boots its own)
@@ -145,8 +145,8 @@ export class Runtime {
     this._watching = false;
     this._closed = false;
     this._tools = null;
-    /** Warm hosts: started workers with the runtime modules loaded, waiting for a spawn. */
-    this._warm = options.warmHosts === undefined ? 1 : options.warmHosts;
+    /** Warm workers: started workers with the runtime modules loaded, waiting for a spawn. */
+    this._warm = options.warmWorkers === undefined ? 1 : options.warmWorkers;
     this._warmPthreadWorkers = options.warmPthreadWorkers === undefined
       ? FALLBACK_PTHREAD_POOL_SIZE : options.warmPthreadWorkers;
     this._spares = [];
@@ -154,21 +154,21 @@ export class Runtime {
   }
 
   /**
-   * Start an idle host worker: it imports the host module and boots pthread
-   * workers ahead (PRELOAD). A spawn may take it before it is ready: the host
+   * Start an idle program worker: it imports the program worker module and boots pthread
+   * workers ahead (PRELOAD). A spawn may take it before it is ready: the worker
    * handles START after PRELOAD, with the pthread workers booted by then.
-   * @returns {{host: Promise<HostWorker>, ready: Promise<void>}}
+   * @returns {{host: Promise<ProgramWorker>, ready: Promise<void>}}
    */
-  _newHost() {
-    const host = startHostWorker();
+  _newWorker() {
+    const host = startProgramWorker();
     const ready = host.then((worker) => new Promise((resolve, reject) => {
       worker.on('message', (m) => {
-        if (m && m.type === FromHost.READY) resolve();
-        else if (m && m.type === FromHost.EXIT) reject(new Error(m.reason));
+        if (m && m.type === FromWorker.READY) resolve();
+        else if (m && m.type === FromWorker.EXIT) reject(new Error(m.reason));
       });
       worker.on('error', (e) => reject(new Error(e.message)));
       worker.postMessage({
-        type: ToHost.PRELOAD, hostModuleUrl: siblingUrl('host_common.mjs'),
+        type: ToWorker.PRELOAD, workerModuleUrl: siblingUrl('program_worker.mjs'),
         pthreadWorkers: this._warmPthreadWorkers, busModuleUrl: siblingUrl('bus_client.mjs'),
       });
     }));
@@ -178,11 +178,11 @@ export class Runtime {
   }
 
   _fillSpares() {
-    while (!this._closed && this._spares.length < this._warm) this._spares.push(this._newHost());
+    while (!this._closed && this._spares.length < this._warm) this._spares.push(this._newWorker());
   }
 
   /**
-   * Resolves when the warm host workers are ready (e.g. before timing a
+   * Resolves when the warm program workers are ready (e.g. before timing a
    * spawn); boots them now if a spawn has taken one and its program has not
    * settled yet.
    */
@@ -192,22 +192,22 @@ export class Runtime {
   }
 
   /**
-   * A host worker for a spawn: a warm one (even while it still warms up),
-   * else a new one, which warms up first when the Runtime keeps warm hosts
+   * A program worker for a spawn: a warm one (even while it still warms up),
+   * else a new one, which warms up first when the Runtime keeps warm workers
    * (spawns in a burst: its pthread workers boot alongside). The caller has
-   * the next warm host booted once the program has settled
+   * the next warm worker booted once the program has settled
    * ({@link Runtime#_fillSparesOnceSettled}).
    */
   async _host() {
     let spare = this._spares.shift();
     if (!spare) {
-      if (this._warm === 0) return startHostWorker();
-      spare = this._newHost();
+      if (this._warm === 0) return startProgramWorker();
+      spare = this._newWorker();
     }
     try {
       return await spare.host;
     } catch (e) {
-      return startHostWorker(); // a broken spare: start one now
+      return startProgramWorker(); // a broken spare: start one now
     }
   }
 
@@ -239,7 +239,7 @@ export class Runtime {
   /**
    * Fetch (once) an executable's scripts as text, in browsers: its glue and,
    * for a pthread build (a glue that names its `.worker.js`), Emscripten's
-   * worker script. The host worker and each of the program's pthread workers
+   * worker script. The program worker and each of the program's pthread workers
    * then run them from memory rather than by a synchronous network load each
    * (~10 ms less per script in Chromium). Under Node.js, and for a script
    * that cannot be fetched, nothing: the workers load it by URL as before.
@@ -260,7 +260,7 @@ export class Runtime {
         }
         return scripts;
       }, () => {
-        this._scripts.delete(url); // try again next time; the host loads it by URL
+        this._scripts.delete(url); // try again next time; the worker loads it by URL
         return {};
       });
       this._scripts.set(url, p);
@@ -337,7 +337,7 @@ export class Runtime {
     worker.on('message', (m) => proc._onMessage(m));
     worker.on('error', (e) => {
       const where = e.filename ? ` (${e.filename}:${e.lineno})` : '';
-      // an uncaught C++ exception arrives described by the host (host_common.mjs)
+      // an uncaught C++ exception arrives described by its program worker (program_worker.mjs)
       const reason = e.message && e.message.startsWith(UNCAUGHT_EXCEPTION) ? e.message
         : `uncaught error: ${e.message}${where}`;
       proc._finish({ code: 1, crashed: true, reason });
@@ -346,15 +346,15 @@ export class Runtime {
       proc._finish({ code, crashed: code !== 0, reason: code !== 0 ? `worker exited with code ${code}` : '' });
     });
     worker.postMessage({
-      type: ToHost.START, bus: this.bus.handle, pid, url, wasmUrl, glueFile, args, env, name, wasmModule, stdin: stdinPipe && stdinPipe.sab, files, mounts, scripts,
-      busModuleUrl: siblingUrl('bus_client.mjs'), hostModuleUrl: siblingUrl('host_common.mjs'),
+      type: ToWorker.START, bus: this.bus.handle, pid, url, wasmUrl, glueFile, args, env, name, wasmModule, stdin: stdinPipe && stdinPipe.sab, files, mounts, scripts,
+      busModuleUrl: siblingUrl('bus_client.mjs'), workerModuleUrl: siblingUrl('program_worker.mjs'),
     });
     return proc;
   }
 
   /**
-   * Boot the next warm host once `proc` has settled (or after
-   * REFILL_AFTER_MS): booting a host and its pthread workers meanwhile would
+   * Boot the next warm worker once `proc` has settled (or after
+   * REFILL_AFTER_MS): booting a worker and its pthread workers meanwhile would
    * compete with the starting program for the cores (~10 ms later first
    * publish on two cores).
    * @param {NodeProcess} proc

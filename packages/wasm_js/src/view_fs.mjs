@@ -12,7 +12,7 @@
  * Everything is lazy: mounting asks the source nothing; a directory is
  * listed once, when a path through it is first looked up or it is read, and
  * a file is read when the program reads it. Writes fail with EROFS. Runs
- * where Emscripten's FS lives, the program's host worker: its pthreads
+ * where Emscripten's FS lives, the program's program worker: its pthreads
  * proxy their file system calls there.
  *
  * @module view_fs

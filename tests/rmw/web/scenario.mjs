@@ -21,7 +21,7 @@
  *       {"exit": "caller", "timeout": 10},             // wait for a process to end
  *       {"quiet": "listener", "text": "I heard", "seconds": 2}, // no such line for 2 s
  *       {"cpu": "idle", "seconds": 2},   // CPU time of the whole Node.js process once the
- *                                        // runtime's warm hosts are ready (null in a page)
+ *                                        // runtime's warm workers are ready (null in a page)
  *       {"graph": "after"},                            // record a graph snapshot
  *       {"graphWait": {"node": "/talker", "present": false}, "timeout": 5}
  *     ]
@@ -120,7 +120,7 @@ export async function runScenario(Runtime, scenario) {
         } else if (step.cpu) {
           const usage = globalThis.process && typeof globalThis.process.cpuUsage === 'function'
             ? globalThis.process.cpuUsage.bind(globalThis.process) : null;
-          // Measure the nodes, not the runtime booting its next warm host
+          // Measure the nodes, not the runtime booting its next warm worker
           // (it does once a spawned program has settled, see Runtime.warm).
           await runtime.warm();
           const before = usage ? usage() : null;

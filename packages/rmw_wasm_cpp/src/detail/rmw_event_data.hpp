@@ -16,11 +16,16 @@
 #define DETAIL__RMW_EVENT_DATA_HPP_
 
 #include <memory>
+#include <mutex>
+#include <unordered_map>
 
 #include "rmw/event.h"
+#include "rmw/error_handling.h"
 #include "rmw/event_callback_type.h"
 #include "rmw/ret_types.h"
 #include "wasm_cpp/events.hpp"
+
+#include "detail/status.hpp"
 
 namespace rmw_wasm_cpp
 {
@@ -54,6 +59,52 @@ private:
 
 /// The core event kind of an rmw event type (kInvalid for RMW_EVENT_INVALID and unknown values).
 wasm_cpp::EventType to_wasm_event_type(rmw_event_type_t type);
+
+/// The event handles of one publisher or subscription, each made on first use.
+class EventTable final
+{
+public:
+  /// The handle of kind `type` on `entity` (a wasm_cpp::Publisher or Subscription);
+  /// null (rmw error set) when `is_own_kind` says the kind is not the entity's.
+  template<typename Entity>
+  EventData * get(
+    const std::shared_ptr<Entity> & entity, rmw_event_type_t type,
+    bool (* is_own_kind)(wasm_cpp::EventType), const char * role)
+  {
+    const wasm_cpp::EventType kind = to_wasm_event_type(type);
+    if (!is_own_kind(kind)) {
+      RMW_SET_ERROR_MSG_WITH_FORMAT_STRING(
+        "event type %d is not a %s event", static_cast<int>(type), role);
+      return nullptr;
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto it = events_.find(static_cast<int>(type));
+    if (it != events_.end()) {
+      return it->second.get();
+    }
+    auto event = wasm_cpp::Event::make(entity, kind);
+    if (!event.ok()) {
+      to_rmw_ret(event.status());
+      return nullptr;
+    }
+    auto data = EventData::make(event.value());
+    events_[static_cast<int>(type)] = data;
+    return data.get();
+  }
+
+  /// Drop every handle (the entity shuts down).
+  void clear()
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    events_.clear();
+  }
+
+private:
+  // Protects events_.
+  std::mutex mutex_;
+  // Event handles by rmw event type.
+  std::unordered_map<int, std::shared_ptr<EventData>> events_;
+};
 
 }  // namespace rmw_wasm_cpp
 

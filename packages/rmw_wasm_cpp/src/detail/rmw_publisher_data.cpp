@@ -104,33 +104,12 @@ rmw_ret_t PublisherData::publish_serialized(const rmw_serialized_message_t & mes
 
 EventData * PublisherData::event(rmw_event_type_t type)
 {
-  const wasm_cpp::EventType kind = to_wasm_event_type(type);
-  if (!wasm_cpp::is_publisher_event(kind)) {
-    RMW_SET_ERROR_MSG_WITH_FORMAT_STRING(
-      "event type %d is not a publisher event", static_cast<int>(type));
-    return nullptr;
-  }
-  std::lock_guard<std::mutex> lock(mutex_);
-  auto it = events_.find(static_cast<int>(type));
-  if (it != events_.end()) {
-    return it->second.get();
-  }
-  auto event = wasm_cpp::Event::make(publisher_, kind);
-  if (!event.ok()) {
-    to_rmw_ret(event.status());
-    return nullptr;
-  }
-  auto data = EventData::make(event.value());
-  events_[static_cast<int>(type)] = data;
-  return data.get();
+  return events_.get(publisher_, type, wasm_cpp::is_publisher_event, "publisher");
 }
 
 void PublisherData::shutdown()
 {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    events_.clear();
-  }
+  events_.clear();
   publisher_->shutdown();
 }
 

@@ -16,8 +16,6 @@
 #define DETAIL__RMW_PUBLISHER_DATA_HPP_
 
 #include <memory>
-#include <mutex>
-#include <unordered_map>
 
 #include "rmw/event.h"
 #include "rmw/serialized_message.h"
@@ -74,14 +72,12 @@ private:
   // Check the size against the bus maximum and publish.
   rmw_ret_t send(const uint8_t * data, size_t size);
 
-  // Protects events_.
-  mutable std::mutex mutex_;
   // The core publisher.
   std::shared_ptr<wasm_cpp::Publisher> publisher_;
   // How messages are serialized.
   std::shared_ptr<MessageTypeSupport> type_support_;
   // Event handles by rmw event type.
-  std::unordered_map<int, std::shared_ptr<EventData>> events_;
+  EventTable events_;
 };
 
 }  // namespace rmw_wasm_cpp

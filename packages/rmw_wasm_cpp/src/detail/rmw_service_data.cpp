@@ -63,6 +63,37 @@ uint8_t * serialize(
   return data;
 }
 
+// Take one request or response with `take` (a wasm_cpp take of that kind) and
+// decode it into `ros_message`; `kind` and `service_name` name it in the error.
+template<typename Take>
+rmw_ret_t take_and_deserialize(
+  Take take, const MessageTypeSupport & type_support, const char * kind,
+  const std::string & service_name, rmw_service_info_t * header, void * ros_message,
+  bool * taken)
+{
+  *taken = false;
+  ScratchBuffer & buffer = ScratchBuffer::for_this_thread();
+  uint8_t * data = nullptr;
+  size_t size = 0;
+  wasm_cpp::ServiceInfo info;
+  bool got = false;
+  const rmw_ret_t ret = to_rmw_ret(take(buffer.allocator(), &data, &size, &info, &got));
+  if (ret != RMW_RET_OK || !got) {
+    return ret;
+  }
+  std::string error;
+  if (!type_support.deserialize(data, size, ros_message, &error)) {
+    RMW_SET_ERROR_MSG_WITH_FORMAT_STRING(
+      "dropped a malformed %s on service '%s' (request %lld): %s", kind,
+      service_name.c_str(), static_cast<long long>(info.request_id.sequence_number),
+      error.c_str());
+    return RMW_RET_ERROR;
+  }
+  to_rmw_service_info(info, header);
+  *taken = true;
+  return RMW_RET_OK;
+}
+
 }  // namespace
 
 ServiceData::ServiceData(
@@ -89,28 +120,12 @@ std::shared_ptr<ServiceData> ServiceData::make(
 rmw_ret_t ServiceData::take_request(
   rmw_service_info_t * request_header, void * ros_request, bool * taken)
 {
-  *taken = false;
-  ScratchBuffer & buffer = ScratchBuffer::for_this_thread();
-  uint8_t * data = nullptr;
-  size_t size = 0;
-  wasm_cpp::ServiceInfo info;
-  bool got = false;
-  const rmw_ret_t ret = to_rmw_ret(
-    service_->take_request(buffer.allocator(), &data, &size, &info, &got));
-  if (ret != RMW_RET_OK || !got) {
-    return ret;
-  }
-  std::string error;
-  if (!type_support_->request().deserialize(data, size, ros_request, &error)) {
-    RMW_SET_ERROR_MSG_WITH_FORMAT_STRING(
-      "dropped a malformed request on service '%s' (request %lld): %s",
-      service_->service_name().c_str(),
-      static_cast<long long>(info.request_id.sequence_number), error.c_str());
-    return RMW_RET_ERROR;
-  }
-  to_rmw_service_info(info, request_header);
-  *taken = true;
-  return RMW_RET_OK;
+  auto take = [this](auto &&... args) {
+      return service_->take_request(std::forward<decltype(args)>(args)...);
+    };
+  return take_and_deserialize(
+    take, type_support_->request(), "request", service_->service_name(),
+    request_header, ros_request, taken);
 }
 
 rmw_ret_t ServiceData::send_response(
@@ -170,28 +185,12 @@ rmw_ret_t ClientData::send_request(const void * ros_request, int64_t * sequence_
 rmw_ret_t ClientData::take_response(
   rmw_service_info_t * request_header, void * ros_response, bool * taken)
 {
-  *taken = false;
-  ScratchBuffer & buffer = ScratchBuffer::for_this_thread();
-  uint8_t * data = nullptr;
-  size_t size = 0;
-  wasm_cpp::ServiceInfo info;
-  bool got = false;
-  const rmw_ret_t ret = to_rmw_ret(
-    client_->take_response(buffer.allocator(), &data, &size, &info, &got));
-  if (ret != RMW_RET_OK || !got) {
-    return ret;
-  }
-  std::string error;
-  if (!type_support_->response().deserialize(data, size, ros_response, &error)) {
-    RMW_SET_ERROR_MSG_WITH_FORMAT_STRING(
-      "dropped a malformed response on service '%s' (request %lld): %s",
-      client_->service_name().c_str(),
-      static_cast<long long>(info.request_id.sequence_number), error.c_str());
-    return RMW_RET_ERROR;
-  }
-  to_rmw_service_info(info, request_header);
-  *taken = true;
-  return RMW_RET_OK;
+  auto take = [this](auto &&... args) {
+      return client_->take_response(std::forward<decltype(args)>(args)...);
+    };
+  return take_and_deserialize(
+    take, type_support_->response(), "response", client_->service_name(),
+    request_header, ros_response, taken);
 }
 
 void ClientData::shutdown()

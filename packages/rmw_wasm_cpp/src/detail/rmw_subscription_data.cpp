@@ -148,33 +148,12 @@ rmw_ret_t SubscriptionData::take_serialized(
 
 EventData * SubscriptionData::event(rmw_event_type_t type)
 {
-  const wasm_cpp::EventType kind = to_wasm_event_type(type);
-  if (!wasm_cpp::is_subscription_event(kind)) {
-    RMW_SET_ERROR_MSG_WITH_FORMAT_STRING(
-      "event type %d is not a subscription event", static_cast<int>(type));
-    return nullptr;
-  }
-  std::lock_guard<std::mutex> lock(mutex_);
-  auto it = events_.find(static_cast<int>(type));
-  if (it != events_.end()) {
-    return it->second.get();
-  }
-  auto event = wasm_cpp::Event::make(subscription_, kind);
-  if (!event.ok()) {
-    to_rmw_ret(event.status());
-    return nullptr;
-  }
-  auto data = EventData::make(event.value());
-  events_[static_cast<int>(type)] = data;
-  return data.get();
+  return events_.get(subscription_, type, wasm_cpp::is_subscription_event, "subscription");
 }
 
 void SubscriptionData::shutdown()
 {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    events_.clear();
-  }
+  events_.clear();
   subscription_->shutdown();
 }
 

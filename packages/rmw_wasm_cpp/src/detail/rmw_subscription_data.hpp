@@ -16,8 +16,6 @@
 #define DETAIL__RMW_SUBSCRIPTION_DATA_HPP_
 
 #include <memory>
-#include <mutex>
-#include <unordered_map>
 
 #include "rmw/event.h"
 #include "rmw/serialized_message.h"
@@ -79,14 +77,12 @@ private:
     std::shared_ptr<wasm_cpp::Subscription> subscription,
     std::shared_ptr<MessageTypeSupport> type_support);
 
-  // Protects events_.
-  mutable std::mutex mutex_;
   // The core subscription.
   std::shared_ptr<wasm_cpp::Subscription> subscription_;
   // How messages are deserialized.
   std::shared_ptr<MessageTypeSupport> type_support_;
   // Event handles by rmw event type.
-  std::unordered_map<int, std::shared_ptr<EventData>> events_;
+  EventTable events_;
 };
 
 /// Copy the core's message info into an rmw_message_info_t.

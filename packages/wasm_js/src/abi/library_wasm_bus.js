@@ -5,7 +5,7 @@
 // target's link options.
 //
 // Each thread of the executable has its own BusClient (share/wasm_js/src/bus_client.mjs):
-// - the main runtime thread uses the one the wasm_js host puts in
+// - the main runtime thread uses the one the wasm_js program worker puts in
 //   Module.wasmBus = {client, moduleUrl}; when the executable runs alone
 //   (`node exe.js`), it imports bus_client.mjs and creates a private bus;
 // - each pthread worker gets {cmd: 'wasmBus', bus, pid, moduleUrl} right
@@ -160,8 +160,8 @@ var LibraryWasmBus = {
       if (ENVIRONMENT_IS_PTHREAD) {
         // Hold 'loaded' until the main thread sent us the bus and we attached.
         addRunDependency('wasm-bus');
-        // And hold what comes before then: the wasm_js host may post a thread's
-        // 'run' right after 'load' (host_common.mjs), and attaching is async.
+        // And hold what comes before then: the program worker may post a thread's
+        // 'run' right after 'load' (program_worker.mjs), and attaching is async.
         // They are handled in order, each in a task of its own (as a message
         // would be, so that what a thread throws reaches the Worker's error
         // handler), until none is left.
@@ -215,7 +215,7 @@ var LibraryWasmBus = {
         return r;
       };
 #endif
-      // The environment the host gives (Module.env; colcon-wasm's glue start-up
+      // The environment the program worker gives (Module.env; colcon-wasm's glue start-up
       // fragment does the same for executables that do not link wasm_cpp).
       if (Module['env'] && typeof ENV == 'object') {
         for (var k in Module['env']) ENV[k] = String(Module['env'][k]);

@@ -27,12 +27,23 @@ const decoder = new TextDecoder();
 export const PAGE = 65536;
 
 /**
+ * Make this thread's views cover the whole arena (registry lock held): another
+ * thread may have grown the bus, and blocks, free ones included, may lie
+ * beyond the views this thread last saw. Typed-array writes past a view are
+ * silently dropped, so every arena walk starts here.
+ */
+function coverArena(bus) {
+  if (bus.i32[HEADER.ARENA_TOP] > bus.u8.length) bus.refreshViews();
+}
+
+/**
  * Allocate an arena block of at least `bytes` bytes (registry lock held).
  * @param {number} bytes
  * @param {number} owner pid, recorded in the block header
  * @returns {number} payload byte offset, or 0 when the bus is full
  */
 export function alloc(bus, bytes, owner) {
+  coverArena(bus);
   releaseQuarantine(bus);
   let shift = MIN_CLASS_SHIFT;
   while ((1 << shift) < bytes && shift < 31) shift++;
@@ -76,6 +87,7 @@ export function blockCapacity(bus, off) {
  */
 export function free(bus, off) {
   if (!off) return;
+  coverArena(bus);
   const i32 = bus.i32;
   const hw = (off - BLOCK_HEADER_BYTES) >> 2;
   if (i32[hw + BLOCK.STATE] !== BLOCK_USED) return;
@@ -90,6 +102,7 @@ export function free(bus, off) {
 }
 
 export function releaseQuarantine(bus) {
+  coverArena(bus);
   const i32 = bus.i32;
   let head = i32[HEADER.QUAR_HEAD];
   if (!head) return;

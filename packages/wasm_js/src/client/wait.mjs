@@ -47,7 +47,7 @@ export function sleep(c, bell, ms) {
 
 /**
  * Call `fn` once, just before this thread first sleeps on the bus (a wait,
- * a blocked publish, a wait for acknowledgements): the host's sign that
+ * a blocked publish, a wait for acknowledgements): the worker's sign that
  * main() has started and now waits for work.
  * @param {function(): void} fn
  */

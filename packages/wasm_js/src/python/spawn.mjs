@@ -11,15 +11,15 @@
  *     onLog, onExit });
  *
  * The process is a NodeProcess of the runtime (logs, exit, stop(), graph
- * clean-up are the executables'): the worker speaks the host protocol
- * (protocol.mjs FromHost).
+ * clean-up are the executables'): the worker speaks the program worker protocol
+ * (protocol.mjs FromWorker).
  *
  * @module python/spawn
  */
 
 import { BusError, Code } from '../bus.mjs';
 import { PROC_KIND_NODE } from '../layout.mjs';
-import { HostWorker, isNode, siblingUrl } from '../platform.mjs';
+import { ProgramWorker, isNode, siblingUrl } from '../platform.mjs';
 import { NodeProcess } from '../runtime.mjs';
 
 /** The Pyodide release (npm package `pyodide`) this runtime is written and tested for. */
@@ -104,7 +104,7 @@ export async function spawnPython(runtime, spec) {
   const pid = await runtime._allocPid(PROC_KIND_NODE);
   let worker;
   try {
-    worker = await HostWorker.start(siblingUrl('python/python_host.mjs'), { name: `python ${name}`, type: 'module' });
+    worker = await ProgramWorker.start(siblingUrl('python/python_worker.mjs'), { name: `python ${name}`, type: 'module' });
   } catch (e) {
     await runtime._reap(pid, null);
     throw new BusError(Code.ERROR, `spawnPython '${name}': cannot start a worker: ${e.message}`);
@@ -112,7 +112,7 @@ export async function spawnPython(runtime, spec) {
   const proc = new NodeProcess(runtime, pid, name, worker, { ...spec, spawnedAt: performance.now() });
   runtime.processes.set(pid, proc);
   worker.on('message', (m) => proc._onMessage(m));
-  worker.on('error', (e) => proc._finish({ code: 1, crashed: true, reason: `uncaught error in the Python host: ${e.message}` }));
+  worker.on('error', (e) => proc._finish({ code: 1, crashed: true, reason: `uncaught error in the Python worker: ${e.message}` }));
   worker.on('exit', ({ code }) => {
     proc._finish({ code, crashed: code !== 0, reason: code !== 0 ? `worker exited with code ${code}` : '' });
   });

@@ -11,7 +11,7 @@
  */
 
 import { BusError } from '../bus.mjs';
-import { HostWorker, siblingUrl } from '../platform.mjs';
+import { ProgramWorker, siblingUrl } from '../platform.mjs';
 import { FromTools, ToTools } from '../protocol.mjs';
 
 function toError(e) {
@@ -37,7 +37,7 @@ export class Tools {
    * @returns {Promise<Tools>}
    */
   static async start(runtime, pid) {
-    const worker = await HostWorker.start(siblingUrl('tools_process/worker.mjs'), { name: 'wasm_js tools', type: 'module' });
+    const worker = await ProgramWorker.start(siblingUrl('tools_process/worker.mjs'), { name: 'wasm_js tools', type: 'module' });
     const tools = new Tools(runtime, pid, worker);
     await tools._call('init', [runtime.bus.handle, pid], ToTools.INIT);
     return tools;

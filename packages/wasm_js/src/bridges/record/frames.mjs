@@ -2,7 +2,7 @@
 // Licensed under the Apache License, Version 2.0
 
 /**
- * The frames between the Node host and the launcher, one pipe each way:
+ * The frames between the Node.js launcher and the launcher, one pipe each way:
  * `u32 length` (of what follows), `u8 kind`, the body; little endian.
  * colcon_wasm/record/frames.py is the other side and describes the bodies.
  *

@@ -4,7 +4,7 @@
 /**
  * Record and replay in `colcon-wasm run|launch|play` (launch/run_plan.mjs):
  * `plan.record` ({fd, topics}) and `plan.play` ({fd, rate, clock,
- * stop_after}), the host's ends of the launcher's pipes
+ * stop_after}), the Node.js side's ends of the launcher's pipes
  * (colcon_wasm/record/session.py).
  *
  * @module bridges/record/launch

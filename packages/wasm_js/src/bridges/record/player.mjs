@@ -2,7 +2,7 @@
 // Licensed under the Apache License, Version 2.0
 
 /**
- * The replay side of `colcon-wasm play` / `launch --play` in the Node host:
+ * The replay side of `colcon-wasm play` / `launch --play` in the Node.js launcher:
  * the launcher reads the bag and streams its messages down a pipe
  * (./frames.mjs); this publishes each one on the bus at its time, the
  * recorded gaps divided by the rate, with a publisher per topic of the

@@ -2,7 +2,7 @@
 // Licensed under the Apache License, Version 2.0
 
 /**
- * The recording side of `--record` in the Node host: one tools subscription
+ * The recording side of `--record` in the Node.js launcher: one tools subscription
  * per topic with a publisher (or per `--record-topic`), subscribed as soon
  * as the topic shows up in the graph, with the QoS that matches its
  * publishers (as `ros2 bag record` adapts). Every message goes, as the

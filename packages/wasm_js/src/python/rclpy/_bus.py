@@ -2,7 +2,7 @@
 # Licensed under the Apache License, Version 2.0
 
 """
-The bus, as the Python host gives it (``_colcon_wasm_bus``, python_host.mjs).
+The bus, as the Python worker gives it (``_colcon_wasm_bus``, python_worker.mjs).
 
 Messages cross to JavaScript as plain objects (Pyodide's ``to_js``) and
 cdr.mjs encodes and decodes them, so Python nodes and C++ nodes share one
@@ -15,7 +15,7 @@ try:
     from pyodide.ffi import to_js
 except ImportError as e:  # pragma: no cover - outside the runtime
     raise ImportError(
-        "this rclpy runs only inside colcon-wasm's Python host (Pyodide in a bus "
+        "this rclpy runs only inside colcon-wasm's Python worker (Pyodide in a bus "
         f"worker): run the script with 'colcon-wasm run --python FILE.py' ({e})") from None
 
 

@@ -49,47 +49,36 @@ class Context:
             raise RuntimeError(f'cannot {what}: call rclpy.init() first (or the context was '
                                'shut down)')
 
+    def _ros_rules(self, flags, cli_args):
+        """Yield the ``from:=to`` pairs after each of ``flags`` inside ``--ros-args``."""
+        for args in (self._args, cli_args or []):
+            inside = False
+            it = iter(args)
+            for arg in it:
+                if arg == '--ros-args':
+                    inside = True
+                elif arg == '--':
+                    inside = False
+                elif inside and arg in flags:
+                    rule = next(it, '')
+                    if ':=' in rule:
+                        yield rule.split(':=', 1)
+
     def parameter_overrides(self, node_name, cli_args=None):
         """Return the ``-p [node:]name:=value`` values of the ROS arguments for a node."""
         from rclpy.parameter import parse_value
         values = {}
-        for args in (self._args, cli_args or []):
-            inside = False
-            it = iter(args)
-            for arg in it:
-                if arg == '--ros-args':
-                    inside = True
-                elif arg == '--':
-                    inside = False
-                elif inside and arg in ('-p', '--param'):
-                    rule = next(it, '')
-                    if ':=' not in rule:
-                        continue
-                    name, value = rule.split(':=', 1)
-                    if ':' in name:
-                        node, name = name.split(':', 1)
-                        if node != node_name:
-                            continue
-                    values[name] = parse_value(value)
+        for name, value in self._ros_rules(('-p', '--param'), cli_args):
+            if ':' in name:
+                node, name = name.split(':', 1)
+                if node != node_name:
+                    continue
+            values[name] = parse_value(value)
         return values
 
     def remappings(self, cli_args=None):
         """Return the ``-r from:=to`` rules of the ROS arguments (``--ros-args``)."""
-        rules = {}
-        for args in (self._args, cli_args or []):
-            inside = False
-            it = iter(args)
-            for arg in it:
-                if arg == '--ros-args':
-                    inside = True
-                elif arg == '--':
-                    inside = False
-                elif inside and arg in ('-r', '--remap'):
-                    rule = next(it, '')
-                    if ':=' in rule:
-                        source, target = rule.split(':=', 1)
-                        rules[source] = target
-        return rules
+        return dict(self._ros_rules(('-r', '--remap'), cli_args))
 
 
 _default = Context()

@@ -17,22 +17,58 @@ from rclpy.qos import qos_profile_services_default
 from rclpy.task import Future
 
 
-class Publisher:
-    """Publishes messages of one type on one topic."""
+class _Endpoint:
+    """What every endpoint has: its node, its QoS and its bus handle."""
+
+    def __init__(self, node, handle, qos_profile):
+        """Keep the node, the bus handle and the QoS."""
+        self.node = node
+        self.qos_profile = qos_profile
+        self._handle = handle
+
+    def destroy(self):
+        """Leave the graph."""
+        if self._handle is not None:
+            bus.destroy_endpoint(self._handle)
+            self._handle = None
+
+
+class _TopicEndpoint(_Endpoint):
+    """A publisher or subscription: one message type on one topic."""
 
     def __init__(self, node, msg_type, topic, handle, qos_profile):
-        """Made by Node.create_publisher."""
-        self.node = node
+        """Keep the type and the fully qualified topic name."""
+        super().__init__(node, handle, qos_profile)
         self.msg_type = msg_type
         self.topic = topic
-        self.qos_profile = qos_profile
         self._type_name = _messages.type_name(msg_type)
-        self._handle = handle
 
     @property
     def topic_name(self):
         """Return the fully qualified topic name."""
         return self.topic
+
+
+class _ServiceEndpoint(_Endpoint):
+    """A service server or client: one service type under one name."""
+
+    def __init__(self, node, srv_type, srv_name, handle, qos_profile):
+        """Keep the type, its request and response type names and the service name."""
+        super().__init__(node, handle, qos_profile)
+        self.srv_type = srv_type
+        self.srv_name = srv_name
+        self._type_name = _messages.type_name(srv_type)
+        self._request = _messages.type_name(srv_type.Request)
+        self._response = _messages.type_name(srv_type.Response)
+
+    @property
+    def service_name(self):
+        """Return the fully qualified service name."""
+        return self.srv_name
+
+
+class Publisher(_TopicEndpoint):
+    """Publishes messages of one type on one topic."""
 
     def publish(self, msg):
         """Publish a message (an instance of msg_type)."""
@@ -44,30 +80,14 @@ class Publisher:
         """Return the number of matched subscriptions."""
         return bus.matched_count(self._handle)
 
-    def destroy(self):
-        """Leave the graph."""
-        if self._handle is not None:
-            bus.destroy_endpoint(self._handle)
-            self._handle = None
 
-
-class Subscription:
+class Subscription(_TopicEndpoint):
     """Calls ``callback(msg)`` for each message of a topic."""
 
     def __init__(self, node, msg_type, topic, callback, handle, qos_profile):
         """Made by Node.create_subscription."""
-        self.node = node
-        self.msg_type = msg_type
-        self.topic = topic
+        super().__init__(node, msg_type, topic, handle, qos_profile)
         self.callback = callback
-        self.qos_profile = qos_profile
-        self._type_name = _messages.type_name(msg_type)
-        self._handle = handle
-
-    @property
-    def topic_name(self):
-        """Return the fully qualified topic name."""
-        return self.topic
 
     def _take(self):
         value = bus.take(self._handle, self._type_name)
@@ -79,32 +99,14 @@ class Subscription:
         """Return the number of matched publishers."""
         return bus.matched_count(self._handle)
 
-    def destroy(self):
-        """Leave the graph."""
-        if self._handle is not None:
-            bus.destroy_endpoint(self._handle)
-            self._handle = None
 
-
-class Service:
+class Service(_ServiceEndpoint):
     """Answers requests: ``callback(request, response)`` returns the response."""
 
     def __init__(self, node, srv_type, srv_name, callback, handle, qos_profile):
         """Made by Node.create_service."""
-        self.node = node
-        self.srv_type = srv_type
-        self.srv_name = srv_name
+        super().__init__(node, srv_type, srv_name, handle, qos_profile)
         self.callback = callback
-        self.qos_profile = qos_profile
-        self._type_name = _messages.type_name(srv_type)
-        self._request = _messages.type_name(srv_type.Request)
-        self._response = _messages.type_name(srv_type.Response)
-        self._handle = handle
-
-    @property
-    def service_name(self):
-        """Return the fully qualified service name."""
-        return self.srv_name
 
     def _serve_one(self):
         taken = bus.take_request(self._handle, self._request)
@@ -119,25 +121,13 @@ class Service:
                           plain_to_js(response._to_plain()))
         return True
 
-    def destroy(self):
-        """Leave the graph."""
-        if self._handle is not None:
-            bus.destroy_endpoint(self._handle)
-            self._handle = None
 
-
-class Client:
+class Client(_ServiceEndpoint):
     """Calls a service: ``call_async(request)`` returns a Future of the response."""
 
     def __init__(self, node, srv_type, srv_name, handle, qos_profile):
         """Made by Node.create_client."""
-        self.node = node
-        self.srv_type = srv_type
-        self.srv_name = srv_name
-        self.qos_profile = qos_profile
-        self._request = _messages.type_name(srv_type.Request)
-        self._response = _messages.type_name(srv_type.Response)
-        self._handle = handle
+        super().__init__(node, srv_type, srv_name, handle, qos_profile)
         self._pending = {}
 
     def call_async(self, request):
@@ -166,12 +156,6 @@ class Client:
         if future is not None and not future.done():
             future.set_result(self.srv_type.Response._from_plain(taken.value.to_py()))
         return True
-
-    def destroy(self):
-        """Leave the graph."""
-        if self._handle is not None:
-            bus.destroy_endpoint(self._handle)
-            self._handle = None
 
 
 class Timer:

@@ -1,12 +1,12 @@
 // Copyright 2026 The colcon-wasm authors. Licensed under the Apache License 2.0.
 
 /**
- * Node.js host worker (worker_threads). The Runtime may first post PRELOAD
- * (boot pthread workers ahead, then answer READY: a warm host), then posts
- * one START; see host_common.mjs. The glue runs in global scope, as in a browser worker,
+ * Node.js program worker (worker_threads). The Runtime may first post PRELOAD
+ * (boot pthread workers ahead, then answer READY: a warm worker), then posts
+ * one START; see program_worker.mjs. The glue runs in global scope, as in a browser worker,
  * with the CommonJS globals it expects (require, __filename, __dirname).
  *
- * @module node_host
+ * @module program_worker_node
  */
 
 import fs from 'node:fs';
@@ -15,7 +15,7 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { Worker, parentPort } from 'node:worker_threads';
 
-import { prestartPthreadWorkers, startProcess } from './host_common.mjs';
+import { prestartPthreadWorkers, startProcess } from './program_worker.mjs';
 import { fileViewSource } from './view_source_node.mjs';
 
 /** A pre-started pthread worker (see pthread_pool.mjs). */
@@ -36,7 +36,7 @@ function pthreadStub() {
         worker.off('exit', onExit);
       };
     },
-    // An idle stub does not keep the host alive; Emscripten's workers do.
+    // An idle stub does not keep the worker alive; Emscripten's workers do.
     idle: () => worker.unref(),
     busy: () => worker.ref(),
   };
@@ -44,7 +44,7 @@ function pthreadStub() {
 
 const onMessage = (msg) => {
   if (msg && msg.type === 'preload') {
-    // The host module is a static import: already loaded.
+    // The program worker module is a static import: already loaded.
     prestartPthreadWorkers(msg.pthreadWorkers, msg.busModuleUrl, pthreadStub).finally(() => {
       parentPort.postMessage({ type: 'ready' });
     });

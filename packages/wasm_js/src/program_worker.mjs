@@ -1,24 +1,24 @@
 // Copyright 2026 The colcon-wasm authors. Licensed under the Apache License 2.0.
 
 /**
- * What a host worker does to run one executable as a bus process: attach to
+ * What a program worker does to run one executable as a bus process: attach to
  * the bus, build the Emscripten `Module` (arguments, environment, log hooks,
  * the shared compiled wasm module, the bus) and load the executable's glue.
- * Used by web_host.js (browser) and node_host.mjs (Node.js).
+ * Used by program_worker_web.js (browser) and program_worker_node.mjs (Node.js).
  *
- * @module host_common
+ * @module program_worker
  */
 
 import { BusClient } from './bus_client.mjs';
-import { FromHost, UNCAUGHT_EXCEPTION } from './protocol.mjs';
+import { FromWorker, UNCAUGHT_EXCEPTION } from './protocol.mjs';
 import { PthreadPool } from './pthread_pool.mjs';
 import { StdinPipe } from './stdin_pipe.mjs';
 import { mountViews } from './view_fs.mjs';
 import { httpViewSource } from './view_source_http.mjs';
 
 /**
- * The platform half of a host.
- * @typedef {object} HostPlatform
+ * The platform half of a program worker.
+ * @typedef {object} WorkerPlatform
  * @property {function(string, string=): boolean} loadGlue run the glue script (URL or path) in
  *   global scope, from its prefetched text when one is given and the platform can; returns true
  *   when it ran from the text
@@ -31,11 +31,11 @@ import { httpViewSource } from './view_source_http.mjs';
  *   files, for views without a URL (Node.js)
  */
 
-/** This host's pre-started pthread workers (a warm host's), or null. */
+/** This worker's pre-started pthread workers (a warm worker's), or null. */
 let pthreadPool = null;
 
 /**
- * Boot pthread workers ahead of START (a warm host), so that a pthread
+ * Boot pthread workers ahead of START (a warm worker), so that a pthread
  * program's pool is ready at once; see pthread_pool.mjs.
  * @param {number} count how many (the program's `-sPTHREAD_POOL_SIZE`; 0: none)
  * @param {string} busModuleUrl the bus client module they import ahead
@@ -148,7 +148,7 @@ function deferPthreadWorkerLoads(readyWorkers) {
  * main() first sleeps on the bus (a node waiting for work), or when it
  * returns or yields to the event loop, whichever comes first. Until then,
  * background work (pthread workers loading the program, the Runtime's next
- * warm host booting) would compete with main() for the cores.
+ * warm worker booting) would compete with main() for the cores.
  * @param {BusClient} client the main thread's bus client
  * @param {function(): void} settle
  */
@@ -295,7 +295,7 @@ function writeFiles(files, url) {
  * Mount the START message's read-only views (see view_fs.mjs): served ones
  * over HTTP, others from the host's own files. Mounting reads nothing.
  * @param {Array<{path: string, url?: string}>|undefined} mounts
- * @param {HostPlatform} platform
+ * @param {WorkerPlatform} platform
  * @param {string} url the executable, for messages
  * @param {function(string): void} warn
  */
@@ -316,7 +316,7 @@ function mountReadOnlyViews(mounts, platform, url, warn) {
 /**
  * Start the executable described by a START message.
  * @param {object} msg the START message (see protocol.mjs)
- * @param {HostPlatform} platform
+ * @param {WorkerPlatform} platform
  */
 export async function startProcess(msg, platform) {
   const post = platform.post;
@@ -328,12 +328,12 @@ export async function startProcess(msg, platform) {
     // library_wasm_bus.js' state (the glue's top level is this worker's global scope).
     const wasmBus = globalThis.WasmBus;
     const memoryCopy = !!(wasmBus && wasmBus.copyMode === 1);
-    post({ type: FromHost.EXIT, code, crashed, reason, memoryCopy });
+    post({ type: FromWorker.EXIT, code, crashed, reason, memoryCopy });
   };
   const settle = () => {
     if (exited) return;
     loadPthreadWorkers();
-    post({ type: FromHost.SETTLED });
+    post({ type: FromWorker.SETTLED });
   };
   try {
     const client = BusClient.attach(msg.bus, msg.pid);
@@ -342,8 +342,8 @@ export async function startProcess(msg, platform) {
     const Module = {
       arguments: withNamespaceFromEnvironment(msg.args || [], env),
       thisProgram: msg.name,
-      print: (text) => post({ type: FromHost.LOG, stream: 'stdout', text: String(text) }),
-      printErr: (text) => post({ type: FromHost.LOG, stream: 'stderr', text: String(text) }),
+      print: (text) => post({ type: FromWorker.LOG, stream: 'stdout', text: String(text) }),
+      printErr: (text) => post({ type: FromWorker.LOG, stream: 'stderr', text: String(text) }),
       wasmBus: { client, moduleUrl: msg.busModuleUrl },
       env,
       locateFile: (path) => platform.locate(path),
@@ -364,7 +364,7 @@ export async function startProcess(msg, platform) {
         if (msg.stdin) connectStdin(new StdinPipe(msg.stdin), client);
         writeFiles(msg.files, msg.url);
         mountReadOnlyViews(msg.mounts, platform, msg.url,
-          (text) => post({ type: FromHost.LOG, stream: 'stderr', text }));
+          (text) => post({ type: FromWorker.LOG, stream: 'stderr', text }));
       }],
       onExit: (code) => {
         exit(code, code !== 0, code !== 0 ? `exited with code ${code}` : '');
@@ -377,8 +377,8 @@ export async function startProcess(msg, platform) {
         const uncaught = describeUncaughtException(toThrow);
         if (uncaught) {
           // what a native process prints when std::terminate ends it
-          post({ type: FromHost.LOG, stream: 'stderr', text: `terminate called after throwing an instance of '${uncaught.type}'` });
-          if (uncaught.what !== null) post({ type: FromHost.LOG, stream: 'stderr', text: `  what():  ${uncaught.what}` });
+          post({ type: FromWorker.LOG, stream: 'stderr', text: `terminate called after throwing an instance of '${uncaught.type}'` });
+          if (uncaught.what !== null) post({ type: FromWorker.LOG, stream: 'stderr', text: `  what():  ${uncaught.what}` });
           const reason = `${UNCAUGHT_EXCEPTION}'${uncaught.type}'${uncaught.what !== null ? `: ${uncaught.what}` : ''}`;
           exit(1, true, reason);
           throw new Error(reason);
@@ -394,7 +394,7 @@ export async function startProcess(msg, platform) {
     let glueFromMemory = false;
     withPthreadStubs(() => { glueFromMemory = platform.loadGlue(msg.url, scripts[msg.url]) === true; }, scripts);
     if (pthreadPool && pthreadPool.taken) loadPthreadWorkers = deferPthreadWorkerLoads(pthreadPool.readyWorkers);
-    post({ type: FromHost.STARTED, prestartedPthreadWorkers: pthreadPool ? pthreadPool.taken : 0, glueFromMemory });
+    post({ type: FromWorker.STARTED, prestartedPthreadWorkers: pthreadPool ? pthreadPool.taken : 0, glueFromMemory });
   } catch (err) {
     exit(1, true, `cannot start ${msg.url}: ${err && err.message ? err.message : err}`);
     platform.close(1);

@@ -6,7 +6,7 @@
  * JS publisher of RELIABLE KEEP_ALL std_msgs/String "seq N" on /chatter at
  * 50 Hz, for the reconnection test (tests/test_rosbridge_client.py):
  *
- *   node rosbridge_client_host.mjs URL RUNTIME_DIR SECONDS TYPES.json...
+ *   node rosbridge_client_side.mjs URL RUNTIME_DIR SECONDS TYPES.json...
  *
  * prints `PUBLISHED N` every 25 messages, the client's log lines, and at
  * the end one JSON line with the client's counters.

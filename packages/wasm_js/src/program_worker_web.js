@@ -1,18 +1,18 @@
 // Copyright 2026 The colcon-wasm authors. Licensed under the Apache License 2.0.
 //
-// Browser host worker (a classic Web Worker, so that it can importScripts()
-// an Emscripten glue). The Runtime may first post PRELOAD (import the host
-// module, boot pthread workers ahead, answer READY: a warm host), then posts
-// one START; see host_common.mjs.
+// Browser program worker (a classic Web Worker, so that it can importScripts()
+// an Emscripten glue). The Runtime may first post PRELOAD (import the program worker
+// module, boot pthread workers ahead, answer READY: a warm worker), then posts
+// one START; see program_worker.mjs.
 'use strict';
 
 importScripts('import_script.js');
 
-var hostModule = null;
+var workerModule = null;
 
 function load(url) {
-  if (!hostModule) hostModule = import(url);
-  return hostModule;
+  if (!workerModule) workerModule = import(url);
+  return workerModule;
 }
 
 // A pre-started pthread worker (see pthread_pool.mjs).
@@ -44,21 +44,21 @@ self.onmessage = function(e) {
   var msg = e.data;
   if (!msg) return;
   if (msg.type === 'preload') {
-    load(msg.hostModuleUrl).then(function(host) {
-      return host.prestartPthreadWorkers(msg.pthreadWorkers, msg.busModuleUrl, function() {
-        return pthreadStub(new URL('pthread_stub_web.js', msg.hostModuleUrl).href);
+    load(msg.workerModuleUrl).then(function(common) {
+      return common.prestartPthreadWorkers(msg.pthreadWorkers, msg.busModuleUrl, function() {
+        return pthreadStub(new URL('pthread_stub_web.js', msg.workerModuleUrl).href);
       });
     }).then(function() {
       self.postMessage({type: 'ready'});
     }, function(err) {
-      fail('cannot load the wasm_js host (' + msg.hostModuleUrl + '): ' + err);
+      fail('cannot load the wasm_js program worker (' + msg.workerModuleUrl + '): ' + err);
     });
     return;
   }
   if (msg.type !== 'start') return;
   self.onmessage = null;
-  load(msg.hostModuleUrl).then(function(host) {
-    return host.startProcess(msg, {
+  load(msg.workerModuleUrl).then(function(common) {
+    return common.startProcess(msg, {
       loadGlue: function(url, text) { return colconWasmImportScript(url, text, importScripts); },
       locate: function(path) { return new URL(path, msg.url).href; },
       post: function(m) { self.postMessage(m); },
@@ -70,6 +70,6 @@ self.onmessage = function(e) {
       },
     });
   }).catch(function(err) {
-    fail('cannot load the wasm_js host (' + msg.hostModuleUrl + '): ' + err);
+    fail('cannot load the wasm_js program worker (' + msg.workerModuleUrl + '): ' + err);
   });
 };

@@ -6,13 +6,13 @@
  * Python the module `_colcon_wasm_bus` (below: nodes, endpoints, publish,
  * take and a blocking wait, with CDR through cdr.mjs's TypeRegistry), copies
  * the `rclpy` package next to this module into Pyodide's file system and runs
- * the script as `__main__`. It speaks the host protocol (protocol.mjs
- * FromHost), so the Runtime treats it as any other bus process.
+ * the script as `__main__`. It speaks the program worker protocol (protocol.mjs
+ * FromWorker), so the Runtime treats it as any other bus process.
  *
  * A wait blocks this thread in Atomics.wait on the process' doorbell
  * (BusClient.wait), as the C++ nodes' waits do: no polling.
  *
- * @module python/python_host
+ * @module python/python_worker
  */
 
 import fs from 'node:fs';
@@ -25,7 +25,7 @@ import {
 } from '../bus_client.mjs';
 import { TypeRegistry } from '../cdr.mjs';
 import { HEADER } from '../layout.mjs';
-import { FromHost } from '../protocol.mjs';
+import { FromWorker } from '../protocol.mjs';
 
 /** Where the rclpy package lives inside Pyodide's file system. */
 const PYTHON_ROOT = '/colcon_wasm/python';
@@ -42,7 +42,7 @@ const STD_MSGS_STRING = {
 };
 
 const post = (m) => parentPort.postMessage(m);
-const log = (stream, text) => post({ type: FromHost.LOG, stream, text: String(text) });
+const log = (stream, text) => post({ type: FromWorker.LOG, stream, text: String(text) });
 
 /** Every *.py file under `dir` (relative paths). */
 function pythonFiles(dir, prefix = '') {
@@ -223,7 +223,7 @@ async function start(msg) {
   const settle = () => {
     if (!settled) {
       settled = true;
-      post({ type: FromHost.SETTLED });
+      post({ type: FromWorker.SETTLED });
     }
   };
   client.beforeFirstSleep(settle);
@@ -254,20 +254,20 @@ async function start(msg) {
   pyodide.FS.writeFile(msg.file, msg.source);
   pyodide.registerJsModule('_colcon_wasm_bus', busModule(client, registry, client.createContext(), settle));
   pyodide.runPython(`import sys\nsys.path.insert(0, ${JSON.stringify(PYTHON_ROOT)})`);
-  pyodide.runPython(RUNNER, { filename: '<colcon-wasm python host>' });
+  pyodide.runPython(RUNNER, { filename: '<colcon-wasm python worker>' });
   const run = pyodide.globals.get('_colcon_wasm_run');
-  post({ type: FromHost.STARTED, prestartedPthreadWorkers: 0, glueFromMemory: false });
+  post({ type: FromWorker.STARTED, prestartedPthreadWorkers: 0, glueFromMemory: false });
   const result = run(msg.file, msg.source, pyodide.toPy(msg.args), pyodide.toPy(msg.env));
   const [code, reason] = result.toJs();
   result.destroy();
   settle();
-  post({ type: FromHost.EXIT, code, crashed: code !== 0, reason, memoryCopy: false });
+  post({ type: FromWorker.EXIT, code, crashed: code !== 0, reason, memoryCopy: false });
 }
 
 parentPort.once('message', (msg) => {
   if (!msg || msg.type !== 'start') return;
   start(msg).catch((e) => {
-    log('stderr', `[ERROR] [${msg.name}]: the Python host failed: ${e && e.stack ? e.stack : e}`);
-    post({ type: FromHost.EXIT, code: 1, crashed: true, reason: `the Python host failed: ${e && e.message ? e.message : e}` });
+    log('stderr', `[ERROR] [${msg.name}]: the Python worker failed: ${e && e.stack ? e.stack : e}`);
+    post({ type: FromWorker.EXIT, code: 1, crashed: true, reason: `the Python worker failed: ${e && e.message ? e.message : e}` });
   });
 });
