@@ -48,6 +48,8 @@ _INPUT_FOLDERS = ('colcon_wasm', 'recipes', 'toolchains', 'patches',
 _NOT_INPUTS = ('colcon_wasm/cli/', 'colcon_wasm/blasm.py',
                'colcon_wasm/doctor.py', 'colcon_wasm/launch/',
                'colcon_wasm/server/', 'templates/launcher/',
+               # record and replay, Foxglove schemas: run time only
+               'colcon_wasm/record/', 'colcon_wasm/ros2msg.py',
                'recipes/schema.md',
                'recipes/humble.repos',
                # colcon test --wasm: runs tests, builds nothing

@@ -148,3 +148,22 @@ def test_the_python_library_never_imports_the_cli():
                     re.match(r'\s*from\s+\.+cli\b', line):
                 offenders.append(f'{file}: {line.strip()}')
     assert not offenders, 'library modules import the CLI:\n' + '\n'.join(offenders)
+
+
+# "No JS module over ~500 lines without a reason at its top": about 500, 5 % slack.
+LONG_MODULE_LINES = 525
+LONG_MODULE_REASON = 'Over 500 lines on purpose'
+
+
+def test_long_js_modules_say_why_at_their_top():
+    unexplained = []
+    for file in tracked_files():
+        if not file.endswith(('.mjs', '.js')) or file.startswith('tests/'):
+            continue
+        lines = (REPO / file).read_text(encoding='utf-8').splitlines()
+        if len(lines) > LONG_MODULE_LINES and \
+                not any(LONG_MODULE_REASON in line for line in lines[:60]):
+            unexplained.append(f'{file} ({len(lines)} lines)')
+    assert not unexplained, (
+        f'JS modules over {LONG_MODULE_LINES} lines without "{LONG_MODULE_REASON}: <why>" in '
+        f'their first 60 lines (split them, or say why not): {unexplained}')

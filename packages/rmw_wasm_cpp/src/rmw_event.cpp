@@ -25,23 +25,25 @@
 using rmw_wasm_cpp::EventData;
 using rmw_wasm_cpp::kIdentifier;
 
-extern "C"
+namespace
 {
 
-rmw_ret_t rmw_publisher_event_init(
-  rmw_event_t * rmw_event, const rmw_publisher_t * publisher, rmw_event_type_t event_type)
+// rmw_{publisher,subscription}_event_init: check, then fill `rmw_event` with
+// the entity's (shared) handle of that event type.
+template<typename EntityData, typename RmwEntity>
+rmw_ret_t event_init(
+  rmw_event_t * rmw_event, const RmwEntity * entity, rmw_event_type_t event_type)
 {
   RMW_CHECK_ARGUMENT_FOR_NULL(rmw_event, RMW_RET_INVALID_ARGUMENT);
-  RMW_CHECK_ARGUMENT_FOR_NULL(publisher, RMW_RET_INVALID_ARGUMENT);
+  RMW_CHECK_ARGUMENT_FOR_NULL(entity, RMW_RET_INVALID_ARGUMENT);
   RMW_CHECK_TYPE_IDENTIFIERS_MATCH(
-    publisher, publisher->implementation_identifier, kIdentifier,
+    entity, entity->implementation_identifier, kIdentifier,
     return RMW_RET_INCORRECT_RMW_IMPLEMENTATION);
   if (rmw_event->implementation_identifier != nullptr) {
     RMW_SET_ERROR_MSG("expected a zero-initialized event");
     return RMW_RET_INVALID_ARGUMENT;
   }
-  EventData * data =
-    static_cast<rmw_wasm_cpp::PublisherData *>(publisher->data)->event(event_type);
+  EventData * data = static_cast<EntityData *>(entity->data)->event(event_type);
   if (data == nullptr) {
     return RMW_RET_INVALID_ARGUMENT;
   }
@@ -51,27 +53,21 @@ rmw_ret_t rmw_publisher_event_init(
   return RMW_RET_OK;
 }
 
+}  // namespace
+
+extern "C"
+{
+
+rmw_ret_t rmw_publisher_event_init(
+  rmw_event_t * rmw_event, const rmw_publisher_t * publisher, rmw_event_type_t event_type)
+{
+  return event_init<rmw_wasm_cpp::PublisherData>(rmw_event, publisher, event_type);
+}
+
 rmw_ret_t rmw_subscription_event_init(
   rmw_event_t * rmw_event, const rmw_subscription_t * subscription, rmw_event_type_t event_type)
 {
-  RMW_CHECK_ARGUMENT_FOR_NULL(rmw_event, RMW_RET_INVALID_ARGUMENT);
-  RMW_CHECK_ARGUMENT_FOR_NULL(subscription, RMW_RET_INVALID_ARGUMENT);
-  RMW_CHECK_TYPE_IDENTIFIERS_MATCH(
-    subscription, subscription->implementation_identifier, kIdentifier,
-    return RMW_RET_INCORRECT_RMW_IMPLEMENTATION);
-  if (rmw_event->implementation_identifier != nullptr) {
-    RMW_SET_ERROR_MSG("expected a zero-initialized event");
-    return RMW_RET_INVALID_ARGUMENT;
-  }
-  EventData * data =
-    static_cast<rmw_wasm_cpp::SubscriptionData *>(subscription->data)->event(event_type);
-  if (data == nullptr) {
-    return RMW_RET_INVALID_ARGUMENT;
-  }
-  rmw_event->implementation_identifier = kIdentifier;
-  rmw_event->data = data;
-  rmw_event->event_type = event_type;
-  return RMW_RET_OK;
+  return event_init<rmw_wasm_cpp::SubscriptionData>(rmw_event, subscription, event_type);
 }
 
 rmw_ret_t rmw_take_event(const rmw_event_t * event_handle, void * event_info, bool * taken)

@@ -1,10 +1,9 @@
 // Copyright 2026 The colcon-wasm authors. Licensed under the Apache License 2.0.
 
 /**
- * The Runtime: owns the bus of a page (or Node.js process), runs each node
- * executable in its own worker, reports logs and exits, cleans up after dead
- * nodes and tells the page about graph changes. Runs on the main thread and
- * never blocks it.
+ * The Runtime: owns the bus of a page (or Node.js process), runs each node executable in its
+ * own worker, reports logs and exits, cleans up after dead nodes and tells the page about
+ * graph changes. Runs on the main thread and never blocks it.
  *
  * @module runtime
  */
