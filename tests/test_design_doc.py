@@ -2,8 +2,10 @@
 # Licensed under the Apache License, Version 2.0
 
 """
-docs/design.md against the tree: its layout tables name files that exist and
-cover every tracked file of the JS runtime; imports go down the layers.
+docs/design.md against the tree, and the layers' imports.
+
+Its layout tables name files that exist and cover every tracked file of the
+JS runtime; imports go down the layers.
 
 The layers: rmw_wasm_cpp → wasm_cpp → wasm_js (a lower layer never names a
 higher one); in wasm_js, the page, launch and bridge modules use the runtime,
@@ -28,7 +30,7 @@ def tracked_files():
 
 
 def layout_table(heading):
-    """Return the backticked paths of the first column of the table under ``heading``."""
+    """Return the paths (in backquotes) of the first column of the table under ``heading``."""
     text = DESIGN.read_text(encoding='utf-8')
     start = text.index(heading)
     rows = []

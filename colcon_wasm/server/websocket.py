@@ -1,7 +1,7 @@
 # Copyright 2026 colcon-wasm contributors
 # Licensed under the Apache License, Version 2.0
 
-"""WebSocket connections (RFC 6455), server side, for ``colcon-wasm serve``'s relay.
+"""WebSocket connections (RFC 6455) for ``colcon-wasm serve``'s relay, and its clients.
 
 Standard library only, one thread reading each connection (the server's
 handler thread) and one writing it, so that a peer that stops reading never
@@ -9,14 +9,19 @@ blocks whoever sends to it: what waits for it is counted, and past
 ``max_queued_bytes`` the peer is cut off. Text and binary messages,
 fragmentation, ping/pong and close; no extensions. A message larger than
 ``max_message_bytes`` is skipped and reported to ``on_oversize``; the
-connection stays up.
+connection stays up. :func:`connect` opens the client side (``colcon-wasm
+record`` against a rosbridge server): the same connection, with masked
+frames out and unmasked frames in.
 """
 
 import base64
 import hashlib
+import os
 import queue
+import socket
 import struct
 import threading
+from urllib.parse import urlsplit
 
 from colcon_wasm.error import ColconWasmError
 
@@ -51,25 +56,84 @@ def handshake_response(headers):
             f'Sec-WebSocket-Accept: {accept_key(key.strip())}\r\n\r\n').encode('ascii')
 
 
-def encode_frame(opcode, payload):
-    """Return an unmasked frame (server to client)."""
+def encode_frame(opcode, payload, masked=False):
+    """Return a frame: unmasked (server to client), or ``masked`` (client to server)."""
     n = len(payload)
+    bit = 0x80 if masked else 0
     if n < 126:
-        header = struct.pack('!BB', 0x80 | opcode, n)
+        header = struct.pack('!BB', 0x80 | opcode, bit | n)
     elif n < 65536:
-        header = struct.pack('!BBH', 0x80 | opcode, 126, n)
+        header = struct.pack('!BBH', 0x80 | opcode, bit | 126, n)
     else:
-        header = struct.pack('!BBQ', 0x80 | opcode, 127, n)
-    return header + payload
+        header = struct.pack('!BBQ', 0x80 | opcode, bit | 127, n)
+    if not masked:
+        return header + payload
+    key = os.urandom(4)
+    return header + key + _unmask(payload, key)
+
+
+def connect(url, *, timeout, max_message_bytes, max_queued_bytes):
+    """
+    Open a client connection to ``ws://HOST:PORT/PATH`` (wss is not supported).
+
+    :param timeout: seconds for the TCP connection and the handshake
+    :returns: a :class:`Connection` (client side)
+    :raises WebSocketError: naming the URL, when it cannot connect or the
+      server does not accept the upgrade
+    """
+    parts = urlsplit(url)
+    if parts.scheme != 'ws' or not parts.hostname:
+        raise WebSocketError(1002, f"'{url}' is not a ws://HOST:PORT URL (wss is not supported)")
+    port = parts.port or 80
+    try:
+        sock = socket.create_connection((parts.hostname, port), timeout=timeout)
+    except OSError as e:
+        raise WebSocketError(
+            1006, f'cannot connect to {url}: {e.strerror or e}') from None
+    key = base64.b64encode(os.urandom(16)).decode('ascii')
+    path = (parts.path or '/') + (f'?{parts.query}' if parts.query else '')
+    host = f'[{parts.hostname}]' if ':' in parts.hostname else parts.hostname
+    request = (f'GET {path} HTTP/1.1\r\nHost: {host}:{port}\r\nUpgrade: websocket\r\n'
+               f'Connection: Upgrade\r\nSec-WebSocket-Key: {key}\r\n'
+               'Sec-WebSocket-Version: 13\r\n\r\n')
+    try:
+        sock.sendall(request.encode('ascii'))
+        response = b''
+        while b'\r\n\r\n' not in response:
+            chunk = sock.recv(1)
+            if not chunk:
+                raise ConnectionError('the server closed the connection')
+            response += chunk
+            if len(response) > 16384:
+                raise ConnectionError('the handshake response has no end')
+    except OSError as e:
+        sock.close()
+        raise WebSocketError(1006, f'{url}: the WebSocket handshake failed: {e}') from None
+    status, *lines = response.decode('latin-1').split('\r\n')
+    headers = {k.strip().lower(): v.strip() for k, _, v in
+               (line.partition(':') for line in lines if ':' in line)}
+    if ' 101 ' not in f'{status} ' or headers.get('sec-websocket-accept') != accept_key(key):
+        sock.close()
+        raise WebSocketError(
+            1002, f'{url} did not accept a WebSocket connection ({status.strip()}): is it a '
+                  'rosbridge server?')
+    sock.settimeout(None)
+    return Connection(sock, max_message_bytes=max_message_bytes,
+                      max_queued_bytes=max_queued_bytes, client=True)
 
 
 class Connection:
     """One WebSocket peer: ``run(on_message)`` reads, ``send()`` queues."""
 
     def __init__(self, sock, *, max_message_bytes, max_queued_bytes, on_oversize=None,
-                 on_cut_off=None, on_drain=None):
-        """Wrap a socket whose handshake is done; ``on_drain()``: see ``watch_drain``."""
+                 on_cut_off=None, on_drain=None, client=False):
+        """
+        Wrap a socket whose handshake is done; ``on_drain()``: see ``watch_drain``.
+
+        :param client: True on the client side (frames out masked, in unmasked)
+        """
         self.sock = sock
+        self.client = client
         self.max_message_bytes = max_message_bytes
         self.max_queued_bytes = max_queued_bytes
         self.on_oversize = on_oversize
@@ -105,13 +169,14 @@ class Connection:
         opcode, fin, masked, n = b0 & 0x0F, bool(b0 & 0x80), bool(b1 & 0x80), b1 & 0x7F
         if b0 & 0x70:
             raise WebSocketError(1002, 'RSV bits set, but no extension was negotiated')
-        if not masked:
-            raise WebSocketError(1002, 'a client frame is not masked (RFC 6455 5.1)')
+        if masked == self.client:
+            raise WebSocketError(1002, 'a server frame is masked (RFC 6455 5.1)' if self.client
+                                 else 'a client frame is not masked (RFC 6455 5.1)')
         if n == 126:
             n, = struct.unpack('!H', self._recv_exact(2))
         elif n == 127:
             n, = struct.unpack('!Q', self._recv_exact(8))
-        key = self._recv_exact(4)
+        key = self._recv_exact(4) if masked else b''
         return opcode, fin, n, key
 
     def run(self, on_message):
@@ -123,7 +188,7 @@ class Connection:
                 if opcode >= 0x8:
                     payload = _unmask(self._recv_exact(n), key)
                     if opcode == PING:
-                        self._enqueue(encode_frame(PONG, payload))
+                        self._enqueue(encode_frame(PONG, payload, self.client))
                     elif opcode == CLOSE:
                         self.close(struct.unpack('!H', payload[:2])[0] if len(payload) >= 2
                                    else 1000)
@@ -166,9 +231,9 @@ class Connection:
     def send(self, data):
         """Queue a text (str) or binary (bytes) message; False once closed or cut off."""
         if isinstance(data, str):
-            frame = encode_frame(TEXT, data.encode('utf-8'))
+            frame = encode_frame(TEXT, data.encode('utf-8'), self.client)
         else:
-            frame = encode_frame(BINARY, bytes(data))
+            frame = encode_frame(BINARY, bytes(data), self.client)
         return self._enqueue(frame)
 
     def watch_drain(self, level):
@@ -234,7 +299,7 @@ class Connection:
             self.closed = True
             if code is not None and not now:
                 payload = struct.pack('!H', code) + reason.encode('utf-8')[:120]
-                self._queue.put(encode_frame(CLOSE, payload))
+                self._queue.put(encode_frame(CLOSE, payload, self.client))
             self._queue.put(None)
         if now:
             try:
@@ -244,7 +309,7 @@ class Connection:
 
 
 def _unmask(payload, key):
-    if not payload:
+    if not payload or not key:
         return payload
     n = len(payload)
     mask = (key * (n // 4 + 1))[:n]
