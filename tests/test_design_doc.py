@@ -30,7 +30,7 @@ def tracked_files():
 
 
 def layout_table(heading):
-    """Return the paths (in backquotes) of the first column of the table under ``heading``."""
+    """Return the quoted paths of the first column of the table under ``heading``."""
     text = DESIGN.read_text(encoding='utf-8')
     start = text.index(heading)
     rows = []
