@@ -45,6 +45,26 @@ class Topic:
         self.qos = channel.metadata.get('offered_qos_profiles', '')
 
 
+def unplayable(topic, schemas):
+    """
+    Say why a bag's topic cannot be played into this workspace, or None.
+
+    :param topic: a :class:`Topic`
+    :param schemas: the install's :class:`colcon_wasm.ros2msg.Ros2MsgSchemas`
+    """
+    from colcon_wasm.ros2msg import SchemaError
+    if topic.message_encoding != 'cdr':
+        return f"its messages are encoded as '{topic.message_encoding}', not cdr"
+    if not topic.type:
+        return 'it has no schema'
+    try:
+        schemas.full_text(topic.type)
+    except SchemaError:
+        return (f"the workspace does not know its type '{topic.type}': build its "
+                "interface package with 'colcon build --wasm'")
+    return None
+
+
 def bag_files(path):
     """
     List the ``.mcap`` files of a bag, in order.

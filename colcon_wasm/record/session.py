@@ -21,6 +21,7 @@ from colcon_wasm.record import BagError
 from colcon_wasm.record import frames
 from colcon_wasm.record.bag_reader import bag_files
 from colcon_wasm.record.bag_reader import read_messages
+from colcon_wasm.record.bag_reader import unplayable
 from colcon_wasm.record.bag_writer import BagWriter
 from colcon_wasm.record.bag_writer import COMPRESSIONS
 from colcon_wasm.record.qos import player_qos
@@ -249,17 +250,7 @@ class BagSession:
         if topic.name in announced:
             # the same topic in a later file of the bag, or again on a loop
             return announced[topic.name][1] == topic.type
-        problem = None
-        if topic.message_encoding != 'cdr':
-            problem = f"its messages are encoded as '{topic.message_encoding}', not cdr"
-        elif not topic.type:
-            problem = 'it has no schema'
-        else:
-            try:
-                schemas.full_text(topic.type)
-            except SchemaError:
-                problem = (f"the workspace does not know its type '{topic.type}': build its "
-                           "interface package with 'colcon build --wasm'")
+        problem = unplayable(topic, schemas)
         if problem:
             self._say('WARNING', f"skipping topic '{topic.name}': {problem}")
             announced[topic.name] = (None, None)

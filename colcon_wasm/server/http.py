@@ -6,7 +6,9 @@
 Every response carries the headers that make the page cross-origin isolated
 (``SharedArrayBuffer`` needs them): COOP ``same-origin``, COEP
 ``require-corp`` and CORP ``same-origin``.  GET and HEAD only; no directory
-listing; HTTP/1.1 keep-alive; one thread per connection.
+listing; HTTP/1.1 keep-alive; one thread per connection. WebSockets:
+``/rosbridge`` (serve --rosbridge, relay_http.py) and ``/bag`` (the page's
+record and replay, bag_socket.py), whose recordings are ``/bag/files/...``.
 """
 
 import errno
@@ -20,6 +22,9 @@ from urllib.parse import urlsplit
 
 from colcon_core.logging import colcon_logger
 from colcon_wasm.error import ColconWasmError
+from colcon_wasm.server.bag_socket import BAG_PATH
+from colcon_wasm.server.bag_socket import BagService
+from colcon_wasm.server.bag_socket import FILES_PREFIX
 from colcon_wasm.server.files import choose_body
 from colcon_wasm.server.files import CompressionCache
 from colcon_wasm.server.files import content_type
@@ -53,12 +58,36 @@ class LauncherRequestHandler(BaseHTTPRequestHandler):
 
     def do_GET(self):  # noqa: N802 the name http.server calls
         """Answer a GET request."""
+        path = urlsplit(self.path).path
         relay = getattr(self.server, 'relay', None)
-        if relay is not None and urlsplit(self.path).path == '/rosbridge':
+        if relay is not None and path == '/rosbridge':
             from colcon_wasm.server.relay_http import upgrade  # serve --rosbridge
             upgrade(self, relay, same_origin=True)
             return
+        if path == BAG_PATH:
+            from colcon_wasm.server.relay_http import upgrade  # the page's record and replay
+            upgrade(self, self.server.bags, same_origin=True, path=BAG_PATH)
+            return
+        if path.startswith(FILES_PREFIX):
+            self._send_recording(path)
+            return
         self._respond(send_body=True)
+
+    def _send_recording(self, path):
+        recording = self.server.bags.download(path)
+        if recording is None:
+            self._error(HTTPStatus.NOT_FOUND, 'no such recording (recordings last as long as '
+                                              'the colcon-wasm serve that made them)')
+            return
+        size = recording.stat().st_size
+        self.send_response(HTTPStatus.OK)
+        self._common_headers()
+        self.send_header('Content-Type', 'application/octet-stream')
+        self.send_header('Content-Disposition', f'attachment; filename="{recording.name}"')
+        self.send_header('Content-Length', str(size))
+        self.end_headers()
+        with open(recording, 'rb') as f:
+            shutil.copyfileobj(f, self.wfile)
 
     def do_HEAD(self):  # noqa: N802
         """Answer a HEAD request."""
@@ -169,6 +198,8 @@ class LauncherServer(ThreadingHTTPServer):
         """
         self.site = site
         self.compression = CompressionCache()
+        #: the page's record and replay (/bag), bag_socket.py
+        self.bags = BagService(site.install_space)
         if ':' in host:
             self.address_family = socket.AF_INET6
         try:
@@ -192,6 +223,11 @@ class LauncherServer(ThreadingHTTPServer):
         if ':' in host:
             host = f'[{host}]'
         return f'http://{host}:{port}/'
+
+    def server_close(self):
+        """Close the socket and remove the recordings and uploads of this serve."""
+        super().server_close()
+        self.bags.close()
 
     def handle_error(self, request, client_address):
         """Log a failed connection without a traceback on the console."""

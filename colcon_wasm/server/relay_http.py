@@ -43,15 +43,22 @@ def _token(handler):
     return values[-1] if values else ''
 
 
-def upgrade(handler, relay, *, token=None, same_origin=False):
-    """Turn a request into a relay connection (or refuse it); blocks until it ends."""
+def upgrade(handler, endpoint, *, token=None, same_origin=False, path=RELAY_PATH):
+    """
+    Turn a request into a WebSocket of ``endpoint`` (or refuse it); blocks until it ends.
+
+    :param endpoint: what serves the socket: ``endpoint.serve(sock, peer)`` (the
+      relay, or the page's bag service at ``/bag``)
+    :param path: the URL path, for the messages
+    """
     if same_origin:
         origin = handler.headers.get('Origin')
         host = handler.headers.get('Host', '')
         if origin is not None and urlsplit(origin).netloc != host:
-            _refuse(handler, 403, 'only the pages of this colcon-wasm serve may use '
-                                  f'{RELAY_PATH}; other '
-                                  'rosbridge clients connect to the --rosbridge port')
+            other = ('; other rosbridge clients connect to the --rosbridge port'
+                     if path == RELAY_PATH else '')
+            _refuse(handler, 403, f'only the pages of this colcon-wasm serve may use {path}'
+                                  f'{other}')
             return
     if token and not hmac.compare_digest(_token(handler), token):
         _refuse(handler, 401, 'this rosbridge relay needs a token: connect to '
@@ -59,13 +66,13 @@ def upgrade(handler, relay, *, token=None, same_origin=False):
         return
     response = handshake_response(handler.headers)
     if response is None:
-        _refuse(handler, 400, 'this is a rosbridge WebSocket endpoint: connect with a WebSocket '
+        _refuse(handler, 400, f'{path} is a WebSocket endpoint: connect with a WebSocket '
                               'client (ws://)')
         return
     handler.connection.sendall(response)
     handler.close_connection = True
     host, port = handler.client_address[:2]
-    relay.serve(handler.connection, f'{host}:{port}')
+    endpoint.serve(handler.connection, f'{host}:{port}')
 
 
 class RelayRequestHandler(BaseHTTPRequestHandler):

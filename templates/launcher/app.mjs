@@ -18,6 +18,7 @@ import { ServicesView } from './views/services.mjs';
 import { ActionsView } from './views/actions.mjs';
 import { ParametersView } from './views/parameters.mjs';
 import { bridgeControl } from './views/bridge.mjs';
+import { bagControl } from './views/bag.mjs';
 
 const workspace = JSON.parse(document.getElementById('workspace').textContent);
 const app = document.getElementById('app');
@@ -38,6 +39,7 @@ function header(session) {
     h('span.workspace', { title: workspace.install_base }, workspace.install_base),
     h('span.spacer'),
     bridgeControl(session),
+    bagControl(session),
     running,
     h('span.chip', { title: `wasm_js runtime from ${workspace.runtime_origin}` }, h('span.dot'), 'wasm_js'),
     isolation);

@@ -39,6 +39,11 @@ export class Session {
     this.listeners.get(event).add(callback);
   }
 
+  off(event, callback) {
+    const set = this.listeners.get(event);
+    if (set) set.delete(callback);
+  }
+
   emit(event, ...args) {
     for (const cb of this.listeners.get(event) || []) {
       try { cb(...args); } catch (e) { console.error(`a ${event} listener failed`, e); }

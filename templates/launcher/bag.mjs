@@ -1,0 +1,236 @@
+// Copyright 2026 colcon-wasm contributors
+// Licensed under the Apache License, Version 2.0
+
+// The page's record and replay of rosbag2 MCAP bags, with the /bag WebSocket
+// of `colcon-wasm serve` (colcon_wasm/server/bag_socket.py, which has the
+// MCAP library): the recorder streams every topic of this page's bus there
+// as CDR, as it goes, and offers the file for download; the player uploads
+// a bag and publishes what serve sends back in its recorded timing, with
+// pause, step, seek and rate.
+
+const RECORD_DEPTH = 1000;
+const UPLOAD_SLICE = 1 << 20;
+/** Bytes waiting for serve before the recorder drops (and counts) messages. */
+const MAX_BUFFERED = 256 * 1024 * 1024;
+
+/** A rosbag2 topic QoS for a subscription that matches the offers (ros2 bag record's rule). */
+function recordQos(offers) {
+  const all = (field, value) => offers.length > 0 && offers.every((q) => q[field] === value);
+  return {
+    history: 'keep_last',
+    depth: RECORD_DEPTH,
+    reliability: offers.some((q) => q.reliability === 'best_effort') ? 'best_effort' : 'reliable',
+    durability: all('durability', 'transient_local') ? 'transient_local' : 'volatile',
+  };
+}
+
+/** Open `/bag` of this serve; resolves once open. */
+function openBagSocket() {
+  const ws = new WebSocket(`${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}/bag`);
+  ws.binaryType = 'arraybuffer';
+  return new Promise((resolve, reject) => {
+    ws.onopen = () => resolve(ws);
+    ws.onerror = () => reject(new Error(`cannot open ${ws.url}: is this page served by colcon-wasm serve?`));
+  });
+}
+
+/** Messages from serve: JSON ones go to the waiter of their op (or `onEvent`), binary to `onBinary`. */
+class BagChannel {
+  constructor(ws, { onEvent = () => {}, onBinary = () => {} } = {}) {
+    this.ws = ws;
+    this.onEvent = onEvent;
+    this.onBinary = onBinary;
+    this.waiters = new Map();
+    ws.onmessage = (e) => {
+      if (typeof e.data !== 'string') {
+        this.onBinary(e.data);
+        return;
+      }
+      const msg = JSON.parse(e.data);
+      if (msg.op === 'error' && this.waiters.size) {
+        for (const [, w] of this.waiters) w.reject(new Error(msg.msg));
+        this.waiters.clear();
+        return;
+      }
+      const waiter = this.waiters.get(msg.op);
+      if (waiter) {
+        this.waiters.delete(msg.op);
+        waiter.resolve(msg);
+      } else {
+        this.onEvent(msg);
+      }
+    };
+    ws.onclose = () => {
+      for (const [, w] of this.waiters) w.reject(new Error('serve closed the /bag connection'));
+      this.waiters.clear();
+      this.onEvent({ op: 'closed' });
+    };
+  }
+
+  send(op, fields = {}) {
+    this.ws.send(JSON.stringify({ op, ...fields }));
+  }
+
+  /** Resolve with the next message of `op` (rejects on an `error`). */
+  reply(op) {
+    return new Promise((resolve, reject) => this.waiters.set(op, { resolve, reject }));
+  }
+
+  /** Wait until fewer than `bytes` bytes wait to be sent. */
+  async drain(bytes) {
+    while (this.ws.bufferedAmount > bytes) await new Promise((r) => setTimeout(r, 5));
+  }
+}
+
+/** Records this page's bus into a bag written by serve. */
+export class PageRecorder {
+  constructor(session) {
+    this.session = session;
+    this.channel = null;
+    this.topics = new Map();
+    this.messages = 0;
+    this.dropped = 0;
+    this.warnings = [];
+    this._onGraph = () => this._subscribeNew();
+  }
+
+  get recording() { return this.channel !== null; }
+
+  /** Start recording every topic with a publisher (and each one that appears). */
+  async start({ name = 'launcher.mcap', compression = 'zstd' } = {}) {
+    if (this.channel) throw new Error('already recording');
+    const ws = await openBagSocket();
+    this.channel = new BagChannel(ws, {
+      onEvent: (msg) => {
+        if (msg.op === 'skipped') this.warnings.push(`not recording ${msg.topic}: ${msg.why}`);
+        if (msg.op === 'error') this.warnings.push(msg.msg);
+      },
+    });
+    const started = this.channel.reply('recording');
+    this.channel.send('record', { name, compression });
+    await started;
+    this.messages = 0;
+    this.dropped = 0;
+    this.session.on('graph', this._onGraph);
+    this._subscribeNew();
+  }
+
+  _subscribeNew() {
+    if (!this.channel) return;
+    for (const t of this.session.graph.topics) {
+      if (this.topics.has(t.name) || t.publishers === 0 || !t.types.length) continue;
+      const id = this.topics.size + 1;
+      const type = t.types[0];
+      this.channel.send('topic', { id, topic: t.name, type, qos: t.publisherQos });
+      const subscription = this.session.tools.subscribe(
+        { topic: t.name, type, qos: recordQos(t.publisherQos) }, (batch) => this._write(id, batch));
+      this.topics.set(t.name, { id, subscription });
+    }
+  }
+
+  _write(id, batch) {
+    const ws = this.channel && this.channel.ws;
+    if (!ws) return;
+    for (const m of batch) {
+      if (ws.bufferedAmount > MAX_BUFFERED) {
+        this.dropped++;
+        continue;
+      }
+      const frame = new Uint8Array(20 + m.data.length);
+      const view = new DataView(frame.buffer);
+      view.setUint32(0, id, true);
+      view.setFloat64(4, m.info.receivedTime, true);
+      view.setFloat64(12, m.info.sourceTime, true);
+      frame.set(m.data, 20);
+      ws.send(frame);
+      this.messages++;
+    }
+  }
+
+  /** Stop: resolves to {url, name, messages, bytes, skipped, error, dropped} once serve closed the file. */
+  async stop() {
+    if (!this.channel) throw new Error('not recording');
+    this.session.off('graph', this._onGraph);
+    const closing = [...this.topics.values()].map((t) => t.subscription.then((s) => s.close()).catch(() => {}));
+    this.topics.clear();
+    await Promise.all(closing);
+    const channel = this.channel;
+    await channel.drain(0);
+    const done = channel.reply('recorded');
+    channel.send('stop');
+    const result = await done;
+    this.channel = null;
+    channel.ws.close();
+    return { ...result, dropped: this.dropped, warnings: this.warnings.slice() };
+  }
+}
+
+/** Plays a bag (a File or Blob) into this page's bus, served back by serve in its timing. */
+export class PagePlayer {
+  constructor(session, onChange = () => {}) {
+    this.session = session;
+    this.onChange = onChange;
+    this.channel = null;
+    this.info = null;
+    this.state = { state: 'closed', position_ms: 0, sent: 0, rate: 1 };
+    this.published = 0;
+    this.publishers = new Map();
+    this.error = null;
+  }
+
+  /** Upload the bag and prepare its publishers; resolves to serve's description of it. */
+  async open(file) {
+    await this.close();
+    const ws = await openBagSocket();
+    this.channel = new BagChannel(ws, {
+      onEvent: (msg) => {
+        if (msg.op === 'state') this.state = msg;
+        if (msg.op === 'error') this.error = msg.msg;
+        if (msg.op === 'state' && msg.error) this.error = msg.error;
+        this.onChange(this);
+      },
+      onBinary: (buffer) => this._publish(buffer),
+    });
+    const described = this.channel.reply('bag');
+    this.channel.send('upload', { name: file.name || 'bag.mcap', size: file.size });
+    for (let offset = 0; offset < file.size; offset += UPLOAD_SLICE) {
+      await this.channel.drain(4 * UPLOAD_SLICE);
+      ws.send(await file.slice(offset, offset + UPLOAD_SLICE).arrayBuffer());
+    }
+    this.info = await described;
+    this.error = this.info.error;
+    for (const t of this.info.topics) {
+      this.publishers.set(t.id, this.session.tools.advertise({ topic: t.topic, type: t.type, qos: t.qos }));
+    }
+    await Promise.all(this.publishers.values());
+    this.state = { state: 'paused', position_ms: 0, sent: 0, rate: 1 };
+    this.onChange(this);
+    return this.info;
+  }
+
+  _publish(buffer) {
+    const view = new DataView(buffer);
+    const publisher = this.publishers.get(view.getUint32(0, true));
+    if (!publisher) return;
+    const data = new Uint8Array(buffer, 12);
+    this.published++;
+    publisher.then((p) => p.publish(data)).catch((e) => { this.error = `publishing failed: ${e.message}`; });
+  }
+
+  play() { this.channel?.send('play'); }
+  pause() { this.channel?.send('pause'); }
+  step() { this.channel?.send('step'); }
+  seek(positionMs) { this.channel?.send('seek', { position_ms: positionMs }); }
+  setRate(rate) { this.channel?.send('rate', { rate }); }
+
+  /** Stop playing and remove the publishers. */
+  async close() {
+    if (this.channel) this.channel.ws.close();
+    this.channel = null;
+    const closing = [...this.publishers.values()].map((p) => p.then((x) => x.close()).catch(() => {}));
+    this.publishers.clear();
+    await Promise.all(closing);
+    this.info = null;
+    this.state = { state: 'closed', position_ms: 0, sent: 0, rate: 1 };
+  }
+}

@@ -1,0 +1,101 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""
+The launcher page's record and replay, in headless Chromium (tests/js/page_bag.mjs).
+
+Record: the demo talker and camera run in the page; Record, 4 s, Stop: the
+downloaded bag is read by the third-party `mcap` + `mcap-ros2-support` and
+`rosbags`, and holds what the page's nodes published. Replay: a bag written
+by `rosbags` is dropped on the page, whose C++ listener hears it through
+Step, seek, Play and Pause. serve's `/bag` (colcon_wasm/server/bag_socket.py)
+does the MCAP side. All on 127.0.0.1, every wait bounded.
+"""
+
+import json
+from pathlib import Path
+import re
+import subprocess
+import sys
+
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+import demo_build  # noqa: E402, I100, I202
+from served_page import CHROMIUM  # noqa: E402
+from served_page import JS  # noqa: E402
+from served_page import ServedPage  # noqa: E402
+from test_record import _write_rosbags_bag  # noqa: E402
+from test_record import frame_pixels  # noqa: E402
+from test_record import mcap_messages  # noqa: E402
+
+GAP_MS = 200
+COUNT = 20
+
+
+@pytest.fixture(scope='module')
+def served():
+    """Serve the demo install for the module."""
+    with ServedPage(demo_build.demo_install()) as page:
+        yield page
+
+
+def _drive(served, **options):
+    completed = subprocess.run(
+        ['node', str(JS / 'page_bag.mjs'), json.dumps(
+            dict(options, url=served.url, chromium=CHROMIUM))],
+        capture_output=True, text=True, timeout=240)
+    lines = completed.stdout.strip().splitlines()
+    assert lines, f'page_bag.mjs printed nothing: {completed.stderr[-3000:]}'
+    result = json.loads(lines[-1])
+    assert result['ok'], json.dumps(result, indent=1)[-6000:]
+    return result
+
+
+def test_record_on_the_page_downloads_the_bag_of_its_nodes(served, tmp_path):
+    out = tmp_path / 'download.mcap'
+    result = _drive(served, mode='record', out=str(out))
+    assert result['suggested'] == 'launcher.mcap', result
+    assert re.search(r'launcher\.mcap: \d+ messages', result['chip']), result['chip']
+    messages = mcap_messages(out)
+    chatter = [d for topic, _, _, d, _ in messages if topic == '/chatter']
+    counts = [d.count for d in chatter]
+    talker = '\n'.join(result['logs']['talker'])
+    logged = [int(n) for n in re.findall(r"Hello World: (\d+)'", talker)]
+    assert len(counts) >= 3, counts  # 4 s at 1 Hz
+    assert counts == list(range(counts[0], counts[-1] + 1)), counts
+    assert set(counts) <= set(logged), (counts, logged)
+    assert all(d.data == f'Hello World: {d.count}' for d in chatter)
+    frames = [d for topic, _, _, d, _ in messages if topic == '/camera/image']
+    assert len(frames) >= 20, len(frames)  # 4 s at 10 Hz
+    first = next(k for k in range(10000) if bytes(frames[0].data) == frame_pixels(k))
+    for i, d in enumerate(frames):
+        assert bytes(d.data) == frame_pixels(first + i), f'frame {first + i}'
+    assert all(0 <= log - publish < 1e9 for _, log, publish, _, _ in messages)
+    from rosbags import highlevel
+    with highlevel.AnyReader([out]) as reader:
+        qos = {c.topic: c.ext.offered_qos_profiles for c in reader.connections}
+        assert qos['/chatter'], qos  # the page knows its publishers' QoS
+        assert sum(1 for _ in reader.messages()) == len(messages)
+
+
+def test_a_bag_dropped_on_the_page_plays_with_step_seek_and_pause(served, tmp_path):
+    bag = tmp_path / 'bag'
+    _write_rosbags_bag(bag, served.install, [GAP_MS] * COUNT)
+    mcap = next(bag.glob('*.mcap'))
+    seek_ms = 10 * GAP_MS
+    result = _drive(served, mode='play', bag=str(mcap), seekMs=seek_ms)
+    info = result['info']
+    assert info['count'] == COUNT, info  # /odd is not counted: its type is unknown
+    assert [t['topic'] for t in info['topics']] == ['/chatter'], info
+    assert [s['topic'] for s in info['skipped']] == ['/odd'], info
+    assert 'does not know its type' in info['skipped'][0]['why'], info
+    assert info['topics'][0]['qos']['durability'] == 'transient_local', info
+    marks = result['marks']
+    assert marks['afterSteps'] == [0, 1, 2], marks
+    # seek to 10 gaps: the next message is the 11th (played 10), nothing between is sent
+    assert marks['afterPause'][3:5] == [10, 11], marks
+    assert marks['afterPauseWait'] == marks['afterPause'], marks
+    assert marks['end'] == [0, 1, 2] + list(range(10, COUNT)), marks
+    assert result['state']['state'] == 'ended', result['state']
