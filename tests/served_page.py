@@ -50,6 +50,7 @@ class ServedPage:
         self.url = None
         self.args = [str(a) for a in args]
         self.rosbridge_url = None
+        self.foxglove_url = None
 
     def __enter__(self):  # noqa: D105
         self.process = subprocess.Popen(
@@ -59,6 +60,8 @@ class ServedPage:
         for line in self.process.stdout:
             if line.startswith('rosbridge relay: '):
                 self.rosbridge_url = line.split()[2]
+            if line.startswith('foxglove server: '):
+                self.foxglove_url = line.split()[2]
             if line.startswith('Open '):
                 self.url = line.split()[1]
                 break

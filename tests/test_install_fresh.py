@@ -69,6 +69,8 @@ NOT_RUN = {
     'colcon-wasm play ': 'replay into nodes: tests/test_record.py (bags written by rosbags)',
     'colcon-wasm launch my_pkg robot.launch.xml --play':
         'launch --play --clock: tests/test_record.py',
+    'colcon-wasm serve --foxglove':
+        'a Foxglove server on the served pages: tests/test_foxglove_serve.py',
     'colcon-wasm record ':
         'recording a rosbridge server (serve --rosbridge): tests/test_record_remote.py',
 }

@@ -6,6 +6,7 @@
 import ipaddress
 import sys
 import threading
+import time
 
 from colcon_wasm import resources
 from colcon_wasm.cli import CliExtensionPoint
@@ -43,6 +44,14 @@ class ServeCommand(CliExtensionPoint):
                  'rosbridge clients (roslibjs, roslibpy) on HOST:PORT (default 127.0.0.1:9090; '
                  'port 0 picks a free one)')
         parser.add_argument(
+            '--foxglove', nargs='?', const='127.0.0.1:8765', metavar='[HOST:]PORT',
+            help='A Foxglove WebSocket server on the graph of the pages (through the relay at '
+                 '/rosbridge) on HOST:PORT (default 127.0.0.1:8765; port 0 picks a free one)')
+        parser.add_argument(
+            '--foxglove-queue', type=int, default=10, metavar='N',
+            help='Messages kept per Foxglove subscription while the client is behind '
+                 '(default 10; older ones are dropped and counted)')
+        parser.add_argument(
             '--rosbridge-token', metavar='TOKEN',
             help='rosbridge clients of the --rosbridge port must present TOKEN '
                  '(ws://HOST:PORT/?token=TOKEN)')
@@ -62,7 +71,8 @@ class ServeCommand(CliExtensionPoint):
             launcher_dir=resources.path('templates') / 'launcher',
             runtime_dir=runtime_dir, runtime_origin=runtime_origin,
             page_modules_dir=bundled)
-        relay_server = _relay(args, install_space, server) if args.rosbridge else None
+        relay_server = _relay(args, install_space, server) \
+            if args.rosbridge or args.foxglove else None
         if not _is_loopback(args.host):
             print(f'colcon-wasm serve: warning: listening on {args.host}: other machines can '
                   'open the page, run your nodes and read the files of the install space',
@@ -70,28 +80,61 @@ class ServeCommand(CliExtensionPoint):
         executables = install_space.executables()
         print(f'Serving {len(executables)} executable(s) of {install_space.base}')
         print(f'Runtime: {runtime_origin}')
-        if relay_server is not None:
+        if relay_server is not None and args.rosbridge:
             threading.Thread(target=relay_server.serve_forever, daemon=True).start()
             print(f'rosbridge relay: {relay_server.url} (and /rosbridge for the pages)')
+        threading.Thread(target=server.serve_forever, daemon=True).start()
+        foxglove = _foxglove(args, install_space, server) if args.foxglove else None
         print(f'Open {server.url}  (Ctrl-C stops the server)', flush=True)
         try:
-            server.serve_forever()
+            while True:
+                time.sleep(3600)
         except KeyboardInterrupt:
             print('\nStopped.')
         finally:
+            if foxglove is not None:
+                foxglove.server_close()
             if relay_server is not None:
                 server.relay.close()
                 relay_server.server_close()
+            server.shutdown()
             server.server_close()
         return 0
 
 
+def _foxglove(args, install_space, server):
+    """Start the Foxglove server of serve: a client of the relay at /rosbridge."""
+    from colcon_wasm.server.foxglove_relay import FoxgloveRelayServer
+    host, port = parse_listen_address(args.foxglove, option='--foxglove', default_port=8765)
+    serve_host, serve_port = server.server_address[:2]
+    if serve_host in ('0.0.0.0', '::'):
+        serve_host = '127.0.0.1' if serve_host == '0.0.0.0' else '::1'
+    serve_host = f'[{serve_host}]' if ':' in serve_host else serve_host
+    foxglove = FoxgloveRelayServer(f'ws://{serve_host}:{serve_port}/rosbridge',
+                                   install_space.ros2msg_schemas(), host, port,
+                                   queue_messages=args.foxglove_queue)
+    threading.Thread(target=foxglove.serve_forever, daemon=True).start()
+    if not _is_loopback(host):
+        print(f'colcon-wasm serve: warning: the Foxglove server listens on {host}: other '
+              "machines can see and drive the pages' nodes", file=sys.stderr)
+    print(f'foxglove server: {foxglove.url} (the graph of the pages, through the relay)',
+          flush=True)
+    return foxglove
+
+
+class _NoListener:
+    """The relay without a --rosbridge port (serve --foxglove alone): nothing to close."""
+
+    def server_close(self):
+        """Close nothing."""
+
+
 def _relay(args, install_space, server):
-    """Start the rosbridge relay of the pages and of the --rosbridge port."""
+    """Start the rosbridge relay of the pages and, with --rosbridge, of its port."""
     import json
     from colcon_wasm.server.relay import Relay
     from colcon_wasm.server.relay_http import RelayServer
-    host, port = parse_listen_address(args.rosbridge)
+    host, port = parse_listen_address(args.rosbridge) if args.rosbridge else (None, None)
     types = []
     for path in install_space.type_description_files():
         try:
@@ -100,9 +143,11 @@ def _relay(args, install_space, server):
             pass
     relay = Relay(types=types, max_message_bytes=args.rosbridge_max_message_bytes,
                   max_queued_bytes=args.rosbridge_max_queued_bytes)
-    relay_server = RelayServer(relay, host, port, token=args.rosbridge_token)
     server.relay = relay
     server.site.relay_path = '/rosbridge'
+    if host is None:
+        return _NoListener()
+    relay_server = RelayServer(relay, host, port, token=args.rosbridge_token)
     if not _is_loopback(host):
         print(f'colcon-wasm serve: warning: the rosbridge relay listens on {host}: other '
               "machines can drive the pages' nodes", file=sys.stderr)

@@ -12,6 +12,7 @@
  *   node foxglove_client.mjs refused URL   # no subprotocol offered
  *   node foxglove_client.mjs clock URL     # publishes /clock; a second client gets the time
  *   node foxglove_client.mjs slow URL      # a client that stops reading while a big topic floods
+ *   node foxglove_client.mjs relay URL     # serve --foxglove: a page's talker, listener, add_two_ints_server
  *
  * Prints one JSON line {ok, ...}; every wait is bounded.
  */
@@ -116,6 +117,47 @@ async function demo() {
     ok: true, info: state.info, channel: { ...chatter, schema: chatter.schema }, heard, timestamps: timestamps.slice(0, 3),
     status: state.status, sumCdr, sumJson, missing, graph, sdkProtocol: sdk.ws.protocol, protocol: state.ws.protocol,
     services: [...state.services.keys()],
+  });
+}
+
+async function relay() {
+  const state = connect();
+  const { client } = state;
+  await until('serverInfo', () => state.info);
+  const chatter = await until('the /chatter channel', () => state.channels.get('/chatter'), 40000);
+  const reader = new MessageReader(parse(chatter.schema, { ros2: true }));
+  const heard = [];
+  client.on('message', (m) => heard.push(reader.readMessage(new Uint8Array(m.data.buffer, m.data.byteOffset, m.data.byteLength))));
+  client.subscribe(chatter.id);
+  await until('3 messages on /chatter', () => heard.filter((h) => h.data.startsWith('Hello World')).length >= 3, 20000);
+
+  state.ws.send('{"op": "subscribe", bad json');
+  state.ws.send(JSON.stringify({ op: 'noSuchOp' }));
+  state.ws.send(new Uint8Array([0x7f, 1, 2]));
+  await until('three status messages', () => state.status.length >= 3);
+
+  const jsonId = client.advertise({ topic: '/chatter', encoding: 'json', schemaName: 'demo_interfaces/msg/Chatter' });
+  const cdrId = client.advertise({ topic: '/chatter', encoding: 'cdr', schemaName: 'demo_interfaces/msg/Chatter' });
+  await new Promise((r) => setTimeout(r, 1000));
+  for (let i = 0; i < 5; i++) {
+    client.sendMessage(jsonId, new TextEncoder().encode(JSON.stringify({ data: `from foxglove json ${i}`, count: 2000 + i })));
+    await new Promise((r) => setTimeout(r, 150));
+  }
+  client.sendMessage(cdrId, new Uint8Array([0, 1, 0, 0]));
+  await until('the refusal of cdr', () => state.status.length >= 4);
+  const sumJson = await callService(state, '/add_two_ints', { a: 5, b: 6 }, 'json', 8);
+  const service = state.services.get('/add_two_ints');
+  const cdrRefused = await reply(client, 'serviceCallFailure', (m) => m.callId === 9,
+    () => client.sendServiceCallRequest({ serviceId: service.id, callId: 9, encoding: 'cdr', data: new Uint8Array(4) }), 'a cdr call');
+  const missing = await reply(client, 'serviceCallFailure', (m) => m.callId === 10,
+    () => client.sendServiceCallRequest({ serviceId: 9999, callId: 10, encoding: 'json', data: new Uint8Array(0) }), 'a missing service');
+  const echoed = heard.filter((h) => h.data.startsWith('from foxglove')).map((h) => h.data);
+  const sdk = connect('foxglove.sdk.v1');
+  await until('serverInfo over foxglove.sdk.v1', () => sdk.info && sdk.channels.get('/chatter'));
+  sdk.ws.close();
+  done({
+    ok: true, info: state.info, channel: chatter, heard: heard.slice(0, 5), echoed, status: state.status, sumJson,
+    cdrRefused, missing, service, sdkProtocol: sdk.ws.protocol, protocol: state.ws.protocol,
   });
 }
 
@@ -228,5 +270,5 @@ async function clock() {
   done({ ok: true, before: pub.info.capabilities, after: late.info.capabilities, times: times.slice(0, 3).map(String) });
 }
 
-({ demo, params, refused, slow, clock }[mode] || (() => done({ ok: false, error: `unknown mode ${mode}` })))()
+({ demo, params, refused, slow, clock, relay }[mode] || (() => done({ ok: false, error: `unknown mode ${mode}` })))()
   .catch((e) => done({ ok: false, error: e.stack }));

@@ -1,0 +1,493 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""
+``colcon-wasm serve --foxglove [HOST:]PORT``: Foxglove on the served pages' graph.
+
+The pages of serve meet in its rosbridge relay (relay.py); this server is
+one more client of that relay, over loopback (:class:`RelayLink`), and
+speaks the Foxglove WebSocket protocol (both subprotocols) to Foxglove
+Studio, Lichtblick or ``@foxglove/ws-protocol`` clients:
+
+* every topic of the relay's graph is a channel with ``encoding: cdr``,
+  ``schemaEncoding: ros2msg`` and the complete definition from the
+  install's type descriptions (:mod:`colcon_wasm.ros2msg`, the text
+  rosbag2 and the Node.js server use); the data are the CDR bytes the
+  pages' publishers send the relay (``cbor-raw``), never decoded;
+* ``clientPublish`` and service calls in ``json`` (the relay routes JSON;
+  this server has no CDR codec of its own, so it does not offer ``cdr``);
+* one send queue per subscription (``queue_messages`` newest kept, drops
+  counted), sent round robin, so a flood on one topic never starves another.
+
+Parameters and the connection graph are not offered here: the pages do
+not bridge their nodes' parameter services to the relay (``run``/``launch
+--foxglove`` has both). See docs/bridge.md.
+"""
+
+import collections
+import errno
+from http.server import BaseHTTPRequestHandler
+from http.server import ThreadingHTTPServer
+import itertools
+import json
+import socket
+import threading
+import time
+
+import cbor2
+from colcon_core.logging import colcon_logger
+from colcon_wasm.ros2msg import SchemaError
+from colcon_wasm.server import foxglove_wire as wire
+from colcon_wasm.server.http import ServeError
+from colcon_wasm.server.websocket import connect
+from colcon_wasm.server.websocket import Connection
+
+logger = colcon_logger.getChild(__name__)
+
+CATALOG_INTERVAL = 1.0
+SEND_HIGH_WATER = 8 * 1024 * 1024
+CALL_TIMEOUT = 10.0
+
+
+class RelayLink:
+    """This server's rosbridge connection to serve's relay."""
+
+    def __init__(self, url, on_message):
+        """Connect; ``on_message(msg)`` gets each decoded relay message (reader thread)."""
+        self.connection = connect(url, timeout=10, max_message_bytes=256 << 20,
+                                  max_queued_bytes=64 << 20)
+        self._on_message = on_message
+        threading.Thread(target=self._read, daemon=True).start()
+
+    def _read(self):
+        def receive(data, binary):
+            try:
+                msg = cbor2.loads(data) if binary else json.loads(data)
+            except (ValueError, cbor2.CBORDecodeError):
+                return
+            if isinstance(msg, dict):
+                self._on_message(msg)
+        self.connection.run(receive)
+
+    def send(self, **msg):
+        """Send one rosbridge request."""
+        self.connection.send(json.dumps(msg))
+
+
+class FoxgloveRelayServer(ThreadingHTTPServer):
+    """The listener, the relay link and the channel catalog shared by the sessions."""
+
+    daemon_threads = True
+    allow_reuse_address = True
+
+    def __init__(self, relay_url, schemas, host, port, queue_messages=10):
+        """
+        Bind ``host:port`` (port 0 picks one) and connect to the relay at ``relay_url``.
+
+        :raises ServeError: when the address is taken or cannot be bound
+        """
+        self.schemas = schemas
+        self.queue_messages = queue_messages
+        self.lock = threading.RLock()
+        self.sessions = set()
+        self.channels = {}      # topic -> channel dict (id, topic, encoding, schemaName, ...)
+        self.services = {}      # name -> service dict
+        self.skipped = set()
+        self.upstream = collections.Counter()  # topic -> sessions subscribed
+        self.calls = {}         # relay call id -> (session, service id, call id, deadline)
+        self._ids = itertools.count(1)
+        self._channel_ids = itertools.count(1)
+        self._service_ids = itertools.count(1)
+        self._stop = threading.Event()
+        if ':' in host:
+            self.address_family = socket.AF_INET6
+        try:
+            super().__init__((host, port), _FoxgloveRequestHandler)
+        except OSError as e:
+            if e.errno == errno.EADDRINUSE:
+                raise ServeError(
+                    f'port {port} on {host} is already in use (another Foxglove server or '
+                    'foxglove_bridge?): stop it, or pass --foxglove HOST:PORT (port 0 picks a '
+                    'free port)') from None
+            raise ServeError(f'cannot listen on {host}:{port} for --foxglove: '
+                             f'{e.strerror or e}') from None
+        self.link = RelayLink(relay_url, self._from_relay)
+        threading.Thread(target=self._catalog_loop, daemon=True).start()
+
+    @property
+    def url(self):
+        """Return ws://host:port of the server."""
+        host, port = self.server_address[:2]
+        return f"ws://{(f'[{host}]' if ':' in host else host)}:{port}"
+
+    def server_close(self):
+        """Stop the catalog, close the sessions and the link."""
+        self._stop.set()
+        for session in list(self.sessions):
+            session.conn.close(1001, 'the server is stopping')
+        self.link.connection.close(1000, 'stopping')
+        super().server_close()
+
+    # ------------------------------------------------------------ catalog
+
+    def _catalog_loop(self):
+        while not self._stop.is_set():
+            self._ask('/rosapi/topics', {})
+            self._ask('/rosapi/services', {})
+            self._expire_calls()
+            self._stop.wait(CATALOG_INTERVAL)
+
+    def _ask(self, service, args, kind=None):
+        self.link.send(op='call_service', service=service, args=args,
+                       id=f'foxglove-catalog:{kind or service}')
+
+    def _from_relay(self, msg):
+        op = msg.get('op')
+        if op == 'publish':
+            self._deliver(msg)
+        elif op == 'service_response':
+            rid = str(msg.get('id', ''))
+            if rid == 'foxglove-catalog:/rosapi/topics' and msg.get('result'):
+                self._update_topics(msg.get('values') or {})
+            elif rid == 'foxglove-catalog:/rosapi/services' and msg.get('result'):
+                for name in (msg.get('values') or {}).get('services', []):
+                    if name not in self.services and not name.startswith('/rosapi/'):
+                        self._ask('/rosapi/service_type', {'service': name},
+                                  kind=f'type:{name}')
+                self._drop_services(set((msg.get('values') or {}).get('services', [])))
+            elif rid.startswith('foxglove-catalog:type:') and msg.get('result'):
+                self._add_service(rid[len('foxglove-catalog:type:'):],
+                                  (msg.get('values') or {}).get('type', ''))
+            elif rid in self.calls:
+                self._answer(rid, msg)
+
+    def _schema(self, type_name, what):
+        try:
+            return self.schemas.full_text(type_name)
+        except SchemaError as e:
+            if what not in self.skipped:
+                self.skipped.add(what)
+                logger.warning(f'serve --foxglove: not offering {what}: {e}')
+            return None
+
+    def _update_topics(self, values):
+        topics = dict(zip(values.get('topics') or [], values.get('types') or []))
+        added, removed = [], []
+        with self.lock:
+            for topic, type_name in topics.items():
+                if topic in self.channels or not type_name:
+                    continue
+                full = self.schemas.resolve(type_name) or type_name
+                schema = self._schema(full, f'topic {topic} ({type_name})')
+                if schema is None:
+                    continue
+                channel = {'id': next(self._channel_ids), 'topic': topic, 'encoding': 'cdr',
+                           'schemaName': full, 'schema': schema, 'schemaEncoding': 'ros2msg'}
+                self.channels[topic] = channel
+                added.append(channel)
+            for topic in [t for t in self.channels if t not in topics]:
+                removed.append(self.channels.pop(topic)['id'])
+            sessions = list(self.sessions)
+        for session in sessions:
+            if added:
+                session.send_json(op='advertise', channels=added)
+            if removed:
+                session.forget_channels(removed)
+
+    def _add_service(self, name, type_name):
+        if not type_name:
+            return
+        request = self._schema(f'{type_name}_Request', f'service {name} ({type_name})')
+        response = request and self._schema(f'{type_name}_Response',
+                                            f'service {name} ({type_name})')
+        if not response:
+            return
+
+        def part(suffix, schema):
+            return {'encoding': 'json', 'schemaName': f'{type_name}{suffix}',
+                    'schemaEncoding': 'ros2msg', 'schema': schema}
+        with self.lock:
+            if name in self.services:
+                return
+            service = {'id': next(self._service_ids), 'name': name, 'type': type_name,
+                       'request': part('_Request', request),
+                       'response': part('_Response', response),
+                       'requestSchema': request, 'responseSchema': response}
+            self.services[name] = service
+            sessions = list(self.sessions)
+        for session in sessions:
+            session.send_json(op='advertiseServices', services=[service])
+
+    def _drop_services(self, present):
+        with self.lock:
+            gone = [self.services.pop(n)['id'] for n in list(self.services) if n not in present]
+            sessions = list(self.sessions)
+        if gone:
+            for session in sessions:
+                session.send_json(op='unadvertiseServices', serviceIds=gone)
+
+    # ------------------------------------------------------------ data
+
+    def want(self, topic, wanted):
+        """Count a session's interest in a topic; subscribe or unsubscribe upstream."""
+        with self.lock:
+            channel = self.channels.get(topic)
+            before = self.upstream[topic]
+            self.upstream[topic] += 1 if wanted else -1
+            if self.upstream[topic] <= 0:
+                del self.upstream[topic]
+            after = self.upstream[topic] if topic in self.upstream else 0
+        if before == 0 and after > 0 and channel is not None:
+            self.link.send(op='subscribe', id=f'foxglove:{topic}', topic=topic,
+                           type=channel['schemaName'], compression='cbor-raw')
+        elif before > 0 and after == 0:
+            self.link.send(op='unsubscribe', id=f'foxglove:{topic}', topic=topic)
+
+    def _deliver(self, msg):
+        body = msg.get('msg')
+        if not isinstance(body, dict) or not isinstance(body.get('bytes'), (bytes, bytearray)):
+            return  # a JSON publish: this server sends CDR only
+        secs, nsecs = body.get('secs'), body.get('nsecs')
+        stamp = secs * 1_000_000_000 + nsecs if isinstance(secs, int) and \
+            isinstance(nsecs, int) else time.time_ns()
+        with self.lock:
+            sessions = list(self.sessions)
+        for session in sessions:
+            session.offer(msg.get('topic'), stamp, body['bytes'])
+
+    def call(self, session, service_id, call_id, payload):
+        """Make a service call for a session (json payload)."""
+        with self.lock:
+            service = next((s for s in self.services.values() if s['id'] == service_id), None)
+        if service is None:
+            session.send_json(op='serviceCallFailure', serviceId=service_id, callId=call_id,
+                              message=f'no service with id {service_id} is advertised')
+            return
+        try:
+            args = json.loads(bytes(payload).decode('utf-8'))
+        except (ValueError, UnicodeDecodeError) as e:
+            session.send_json(op='serviceCallFailure', serviceId=service_id, callId=call_id,
+                              message=f"the request to {service['name']} is not JSON: {e}")
+            return
+        rid = f'foxglove-call:{next(self._ids)}'
+        with self.lock:
+            self.calls[rid] = (session, service_id, call_id, time.monotonic() + CALL_TIMEOUT,
+                               service['name'])
+        self.link.send(op='call_service', service=service['name'], args=args, id=rid,
+                       timeout=CALL_TIMEOUT)
+
+    def _answer(self, rid, msg):
+        with self.lock:
+            session, service_id, call_id, _, name = self.calls.pop(rid)
+        if msg.get('result'):
+            payload = json.dumps(msg.get('values') or {}).encode('utf-8')
+            session.conn.send(wire.service_call_response(service_id, call_id, 'json', payload))
+        else:
+            session.send_json(op='serviceCallFailure', serviceId=service_id, callId=call_id,
+                              message=f"{name}: {msg.get('values')}")
+
+    def _expire_calls(self):
+        now = time.monotonic()
+        with self.lock:
+            late = [rid for rid, c in self.calls.items() if c[3] + 1 < now]
+            expired = [self.calls.pop(rid) for rid in late]
+        for session, service_id, call_id, _, name in expired:
+            session.send_json(op='serviceCallFailure', serviceId=service_id, callId=call_id,
+                              message=f'{name} did not answer within {CALL_TIMEOUT:g} s')
+
+
+class FoxgloveSession:
+    """One Foxglove client: its subscriptions, its channels and its send queues."""
+
+    def __init__(self, server, conn, subprotocol):
+        """Greet the client and advertise what the catalog holds."""
+        self.server = server
+        self.conn = conn
+        self.subscriptions = {}   # subscription id -> topic
+        self.client_channels = {}  # channel id -> {topic, encoding, schemaName}
+        self.queues = {}          # subscription id -> deque of (stamp, bytes)
+        self.dropped = collections.Counter()
+        self._ready = threading.Condition()
+        self._closed = False
+        threading.Thread(target=self._send_loop, daemon=True).start()
+        self.send_json(op='serverInfo', name='colcon-wasm serve', capabilities=[
+            'clientPublish', 'services'], supportedEncodings=['json'],
+            metadata={'subprotocol': subprotocol}, sessionId=str(id(self)))
+        with server.lock:
+            channels = list(server.channels.values())
+            services = list(server.services.values())
+            server.sessions.add(self)
+        if channels:
+            self.send_json(op='advertise', channels=channels)
+        if services:
+            self.send_json(op='advertiseServices', services=services)
+
+    def send_json(self, **msg):
+        """Send one JSON message."""
+        self.conn.send(json.dumps(msg))
+
+    def status(self, level, message):
+        """Send a status message."""
+        self.send_json(op='status', level=level, message=message)
+
+    def on_message(self, data, binary):
+        """Handle one client message; bad input gets a status and the connection stays."""
+        if binary:
+            try:
+                decoded = wire.decode_client_binary(data)
+            except wire.WireError as e:
+                self.status(wire.ERROR, str(e))
+                return
+            if decoded[0] == 'publish':
+                self._publish(decoded[1], decoded[2])
+            else:
+                _, service, call, encoding, payload = decoded
+                if encoding != 'json':
+                    self.send_json(op='serviceCallFailure', serviceId=service, callId=call,
+                                   message='this server (serve --foxglove) takes json service '
+                                           f'calls, not {encoding!r}')
+                    return
+                self.server.call(self, service, call, payload)
+            return
+        try:
+            msg = json.loads(data)
+        except ValueError as e:
+            self.status(wire.ERROR, f'malformed JSON: {e}')
+            return
+        handler = getattr(self, f"_op_{msg.get('op')}", None) if isinstance(msg, dict) else None
+        if handler is None:
+            op = msg.get('op') if isinstance(msg, dict) else None
+            self.status(wire.ERROR, f'unknown or unsupported op {op!r} (this server offers '
+                                    'subscribe, unsubscribe, advertise, unadvertise and binary '
+                                    'clientPublish and serviceCallRequest)')
+            return
+        try:
+            handler(msg)
+        except (KeyError, TypeError, ValueError) as e:
+            self.status(wire.ERROR, f"{msg.get('op')}: bad request ({type(e).__name__}: {e})")
+
+    def _op_subscribe(self, msg):
+        with self.server.lock:
+            by_id = {c['id']: c['topic'] for c in self.server.channels.values()}
+        for sub in msg['subscriptions']:
+            topic = by_id.get(sub['channelId'])
+            if topic is None:
+                self.status(wire.WARNING, f"subscribe: no channel {sub['channelId']}")
+                continue
+            with self._ready:
+                self.subscriptions[sub['id']] = topic
+                self.queues[sub['id']] = collections.deque(maxlen=self.server.queue_messages)
+            self.server.want(topic, True)
+
+    def _op_unsubscribe(self, msg):
+        for sid in msg['subscriptionIds']:
+            with self._ready:
+                topic = self.subscriptions.pop(sid, None)
+                self.queues.pop(sid, None)
+            if topic is not None:
+                self.server.want(topic, False)
+
+    def _op_advertise(self, msg):
+        for channel in msg['channels']:
+            self.client_channels[channel['id']] = channel
+            if channel.get('encoding') == 'json':
+                self.server.link.send(op='advertise', topic=channel['topic'],
+                                      type=channel['schemaName'])
+
+    def _op_unadvertise(self, msg):
+        for cid in msg['channelIds']:
+            self.client_channels.pop(cid, None)
+
+    def _publish(self, channel_id, payload):
+        channel = self.client_channels.get(channel_id)
+        if channel is None:
+            self.status(wire.ERROR, f'clientPublish on channel {channel_id}, which this client '
+                                    'did not advertise')
+            return
+        if channel.get('encoding') != 'json':
+            self.status(wire.ERROR, f"clientPublish on {channel['topic']}: this server (serve "
+                                    f"--foxglove) takes json, not {channel.get('encoding')!r}")
+            return
+        try:
+            message = json.loads(bytes(payload).decode('utf-8'))
+        except (ValueError, UnicodeDecodeError) as e:
+            self.status(wire.ERROR, f"clientPublish on {channel['topic']}: not JSON ({e})")
+            return
+        self.server.link.send(op='publish', topic=channel['topic'], msg=message)
+
+    def forget_channels(self, ids):
+        """Unadvertise channels that left the graph (their subscriptions end)."""
+        self.send_json(op='unadvertise', channelIds=ids)
+
+    def offer(self, topic, stamp, data):
+        """Queue a message for every subscription of this session to ``topic``."""
+        with self._ready:
+            for sid, t in self.subscriptions.items():
+                if t == topic:
+                    queue = self.queues[sid]
+                    if len(queue) == queue.maxlen:
+                        self.dropped[topic] += 1
+                    queue.append((stamp, data))
+            self._ready.notify()
+
+    def _send_loop(self):
+        while True:
+            with self._ready:
+                while not self._closed and not any(self.queues.values()):
+                    self._ready.wait()
+                if self._closed:
+                    return
+                batch = [(sid, q.popleft()) for sid, q in self.queues.items() if q]
+            for sid, (stamp, data) in batch:
+                while self.conn.queued_bytes > SEND_HIGH_WATER and not self.conn.closed:
+                    time.sleep(0.002)
+                if not self.conn.send(wire.message_data(sid, stamp, data)):
+                    return
+
+    def close(self):
+        """End the session: its upstream subscriptions go."""
+        with self._ready:
+            self._closed = True
+            topics = list(self.subscriptions.values())
+            self.subscriptions.clear()
+            self._ready.notify()
+        for topic in topics:
+            self.server.want(topic, False)
+
+
+class _FoxgloveRequestHandler(BaseHTTPRequestHandler):
+    """Every GET is a Foxglove WebSocket."""
+
+    protocol_version = 'HTTP/1.1'
+    server_version = 'colcon-wasm'
+
+    def do_GET(self):  # noqa: N802
+        """Upgrade with a Foxglove subprotocol, or refuse."""
+        subprotocol = wire.choose_subprotocol(self.headers)
+        response = wire.handshake_response(self.headers, subprotocol) if subprotocol else None
+        if response is None:
+            offered = ' or '.join(wire.SUBPROTOCOLS)
+            body = ('a Foxglove WebSocket server: connect with the subprotocol '
+                    f'{offered}\n').encode('utf-8')
+            self.send_response(400)
+            self.send_header('Content-Type', 'text/plain; charset=utf-8')
+            self.send_header('Content-Length', str(len(body)))
+            self.end_headers()
+            self.wfile.write(body)
+            return
+        self.connection.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+        self.connection.sendall(response)
+        self.close_connection = True
+        conn = Connection(self.connection, max_message_bytes=64 << 20,
+                          max_queued_bytes=256 << 20)
+        server = self.server
+        session = FoxgloveSession(server, conn, subprotocol)
+        try:
+            conn.run(session.on_message)
+        finally:
+            with server.lock:
+                server.sessions.discard(session)
+            session.close()
+
+    def log_message(self, format, *args):  # noqa: A002
+        """Log nothing."""
