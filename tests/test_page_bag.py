@@ -99,3 +99,22 @@ def test_a_bag_dropped_on_the_page_plays_with_step_seek_and_pause(served, tmp_pa
     assert marks['afterPauseWait'] == marks['afterPause'], marks
     assert marks['end'] == [0, 1, 2] + list(range(10, COUNT)), marks
     assert result['state']['state'] == 'ended', result['state']
+
+
+def test_the_page_replay_drives_a_use_sim_time_rclcpp_node_with_clock(tmp_path):
+    """/clock ticked on the page gives the probe's sim_time (rclcpp) the bag's time."""
+    from rclcpp_build import rclcpp_build
+    from test_play_sim_time import _write_bag, COUNT, GAP_NS, START_NS
+    install = rclcpp_build().install
+    bag = tmp_path / 'bag'
+    _write_bag(bag)
+    with ServedPage(install) as page:
+        result = _drive(page, mode='clock', bag=str(next(bag.glob('*.mcap'))),
+                        pkg='rmw_wasm_cpp_node_tests', exe='probe',
+                        args=['sim_time', '--ros-args', '-p', 'use_sim_time:=true'],
+                        until=r'SIM_TIME \d+')
+    log = '\n'.join(result['logs']['node'])
+    assert 'USE_SIM_TIME true' in log, log
+    seconds = float(re.search(r'SIM_TIME (\d+\.\d)', log).group(1))
+    first, last = START_NS / 1e9, (START_NS + (COUNT - 1) * GAP_NS) / 1e9
+    assert first <= seconds <= last + 0.1, (seconds, first, last, log)

@@ -50,11 +50,14 @@ class PacedPlayer:
     from the bag's first message); ``report(state)`` gets ``{'state',
     'position_ms', 'sent'}`` on each change and a few times a second, and
     ``{'state': 'ended', ...}`` (with ``error`` for a damaged file) at the end.
+    With ``set_clock(hz)``, ``tick(time_ns)`` gets the bag time (since the
+    epoch) ``hz`` times a second while playing, and after each step and seek,
+    for a ``/clock`` that ``use_sim_time`` nodes follow.
     """
 
     REPORT_INTERVAL = 0.2
 
-    def __init__(self, path, channels, start, send, report):
+    def __init__(self, path, channels, start, send, report, tick=None):
         """
         Prepare a paused player.
 
@@ -66,6 +69,8 @@ class PacedPlayer:
         self.start = start
         self.send = send
         self.report = report
+        self.tick = tick or (lambda time_ns: None)
+        self.clock_hz = 0.0
         self.rate = 1.0
         self.state = 'paused'
         self.sent = 0
@@ -127,6 +132,15 @@ class PacedPlayer:
             self._changed = True
             self._cond.notify_all()
 
+    def set_clock(self, hz):
+        """Publish the bag time ``hz`` times a second while playing (0: no clock)."""
+        if not hz >= 0:
+            raise ValueError(f'the clock rate must be >= 0, not {hz!r}')
+        with self._cond:
+            self.clock_hz = float(hz)
+            self._changed = True
+            self._cond.notify_all()
+
     def close(self):
         """Stop the thread."""
         with self._cond:
@@ -185,8 +199,11 @@ class PacedPlayer:
             for _ in range(steps):
                 if self._pending is None:
                     break
+                self._clock_at(self._pending[1])
                 self._emit(self._pending)
                 self._pending = self._next()
+            if seek is not None and self._pending is not None:
+                self._clock_at(self._pending[1])
             if state == 'playing':
                 self._play_until_changed()
             if self._pending is None and self._messages is not None:
@@ -199,16 +216,28 @@ class PacedPlayer:
                 continue
             self.report(self._state())
 
+    def _clock_at(self, time_ns):
+        if self.clock_hz > 0:
+            self.tick(int(time_ns))
+
     def _play_until_changed(self):
         last_report = time.monotonic()
+        next_tick = time.monotonic()
         while self._pending is not None:
             due = self._wall0 + (self._pending[1] - self._bag0) / 1e9 / self.rate
             with self._cond:
                 while not self._changed and not self._closed:
-                    left = due - time.monotonic()
+                    now = time.monotonic()
+                    if self.clock_hz > 0 and now >= next_tick:
+                        self.tick(int(self._bag0 + (now - self._wall0) * self.rate * 1e9))
+                        next_tick = now + 1.0 / self.clock_hz
+                    left = due - now
                     if left <= 0:
                         break
-                    self._cond.wait(min(left, self.REPORT_INTERVAL))
+                    wait = min(left, self.REPORT_INTERVAL)
+                    if self.clock_hz > 0:
+                        wait = min(wait, max(0.0, next_tick - now))
+                    self._cond.wait(wait)
                 if self._changed or self._closed:
                     return
             self._emit(self._pending)

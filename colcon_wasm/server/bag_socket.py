@@ -21,10 +21,11 @@ Page to serve (text is JSON, ``op`` first):
 * ``upload {name, size}`` then ``size`` bytes in binary messages: answered
   by ``bag {name, count, duration_ms, topics: [{id, topic, type, qos}],
   skipped: [{topic, why}], error}``; then ``play``, ``pause``, ``step``,
-  ``seek {position_ms}``, ``rate {rate}``.
+  ``seek {position_ms}``, ``rate {rate}``, ``clock {hz}`` (0: none).
 
 Serve to page: ``state {state, position_ms, sent, rate, error?}``, played
-messages as binary ``<u32 id><f64 position ms>`` then the CDR bytes, and
+messages as binary ``<u32 id><f64 position ms>`` then the CDR bytes, the
+bag time for ``/clock`` as binary ``<u32 0><f64 position ms><u64 ns>``, and
 ``error {msg}`` for a request it refuses (the connection stays up).
 Recordings stay downloadable at ``/bag/files/TOKEN/NAME`` until serve stops.
 """
@@ -58,6 +59,7 @@ FILES_PREFIX = '/bag/files/'
 MAX_MESSAGE_BYTES = 256 * 1024 * 1024
 MAX_QUEUED_BYTES = 256 * 1024 * 1024
 _PLAYED = struct.Struct('<Id')
+_CLOCK = struct.Struct('<IdQ')
 _SAFE_NAME = re.compile(r'[^A-Za-z0-9._-]+')
 
 
@@ -136,6 +138,7 @@ class _PageBagSession:
         self.skipped = {}
         self.upload = None
         self.player = None
+        self.failure_sent = False
 
     def send(self, op, **fields):
         self.connection.send(json.dumps(dict({'op': op}, **fields)))
@@ -161,11 +164,11 @@ class _PageBagSession:
             self._stop_recording()
         elif op == 'upload':
             self._start_upload(request)
-        elif op in ('play', 'pause', 'step', 'seek', 'rate'):
+        elif op in ('play', 'pause', 'step', 'seek', 'rate', 'clock'):
             self._control(op, request)
         else:
             self.send('error', msg=f'unknown op {op!r}: record, topic, stop, upload, play, '
-                                   'pause, step, seek or rate')
+                                   'pause, step, seek, rate or clock')
 
     def _start_recording(self, request):
         if self.writer is not None or self.upload is not None:
@@ -216,7 +219,8 @@ class _PageBagSession:
             target = self.channels.get(channel)
             if target is not None:
                 self.writer.write(target, log_time, publish_time, payload)
-                if self.writer.failed:
+                if self.writer.failed and not self.failure_sent:
+                    self.failure_sent = True
                     self.send('error', msg=self.writer.failed)
             return
         upload = self.upload
@@ -252,7 +256,12 @@ class _PageBagSession:
                   topics=topics, skipped=skipped, error=span.error)
         if span.count:
             self.player = PacedPlayer(path, channels, span.start, self._send_played,
-                                      lambda state: self.send('state', **state))
+                                      lambda state: self.send('state', **state),
+                                      tick=self._send_clock)
+            self._start = span.start
+
+    def _send_clock(self, time_ns):
+        self.connection.send(_CLOCK.pack(0, (time_ns - self._start) / 1e6, time_ns))
 
     def _send_played(self, channel, position_ms, data):
         self.connection.send(_PLAYED.pack(channel, position_ms) + bytes(data))
@@ -264,6 +273,8 @@ class _PageBagSession:
             self.player.seek(float(request['position_ms']))
         elif op == 'rate':
             self.player.set_rate(float(request['rate']))
+        elif op == 'clock':
+            self.player.set_clock(float(request['hz']))
         else:
             getattr(self.player, op)()
 

@@ -13,6 +13,19 @@ const UPLOAD_SLICE = 1 << 20;
 /** Bytes waiting for serve before the recorder drops (and counts) messages. */
 const MAX_BUFFERED = 256 * 1024 * 1024;
 
+/** The QoS of /clock, as the Node.js player's: reliable matches reliable and best-effort clock subscriptions. */
+const CLOCK_QOS = { history: 'keep_last', depth: 1, reliability: 'reliable', durability: 'volatile' };
+
+/** rosgraph_msgs/msg/Clock in CDR: the encapsulation header, int32 sec, uint32 nanosec. */
+function clockMessage(ns) {
+  const out = new Uint8Array(12);
+  const view = new DataView(out.buffer);
+  out[1] = 1;
+  view.setInt32(4, Number(ns / 1000000000n), true);
+  view.setUint32(8, Number(ns % 1000000000n), true);
+  return out;
+}
+
 /** A rosbag2 topic QoS for a subscription that matches the offers (ros2 bag record's rule). */
 function recordQos(offers) {
   const all = (field, value) => offers.length > 0 && offers.every((q) => q[field] === value);
@@ -176,6 +189,9 @@ export class PagePlayer {
     this.published = 0;
     this.publishers = new Map();
     this.error = null;
+    this.clock = null;
+    this.clockHz = 0;
+    this.clockTime = null;
   }
 
   /** Upload the bag and prepare its publishers; resolves to serve's description of it. */
@@ -203,6 +219,7 @@ export class PagePlayer {
       this.publishers.set(t.id, this.session.tools.advertise({ topic: t.topic, type: t.type, qos: t.qos }));
     }
     await Promise.all(this.publishers.values());
+    if (this.clockHz > 0) await this.setClock(this.clockHz);
     this.state = { state: 'paused', position_ms: 0, sent: 0, rate: 1 };
     this.onChange(this);
     return this.info;
@@ -210,7 +227,14 @@ export class PagePlayer {
 
   _publish(buffer) {
     const view = new DataView(buffer);
-    const publisher = this.publishers.get(view.getUint32(0, true));
+    const id = view.getUint32(0, true);
+    if (id === 0) {
+      // the bag time, for /clock
+      this.clockTime = view.getBigUint64(12, true);
+      if (this.clock) this.clock.then((p) => p.publish(clockMessage(this.clockTime))).catch(() => {});
+      return;
+    }
+    const publisher = this.publishers.get(id);
     if (!publisher) return;
     const data = new Uint8Array(buffer, 12);
     this.published++;
@@ -223,12 +247,24 @@ export class PagePlayer {
   seek(positionMs) { this.channel?.send('seek', { position_ms: positionMs }); }
   setRate(rate) { this.channel?.send('rate', { rate }); }
 
+  /** Publish /clock (rosgraph_msgs/msg/Clock) with the bag time `hz` times a second while playing (0: stop). */
+  async setClock(hz) {
+    this.clockHz = hz;
+    if (hz > 0 && !this.clock) {
+      this.clock = this.session.tools.advertise({ topic: '/clock', type: 'rosgraph_msgs/msg/Clock', qos: CLOCK_QOS });
+      await this.clock;
+    }
+    this.channel?.send('clock', { hz });
+  }
+
   /** Stop playing and remove the publishers. */
   async close() {
     if (this.channel) this.channel.ws.close();
     this.channel = null;
     const closing = [...this.publishers.values()].map((p) => p.then((x) => x.close()).catch(() => {}));
     this.publishers.clear();
+    if (this.clock) closing.push(this.clock.then((p) => p.close()).catch(() => {}));
+    this.clock = null;
     await Promise.all(closing);
     this.info = null;
     this.state = { state: 'closed', position_ms: 0, sent: 0, rate: 1 };

@@ -12,6 +12,8 @@
 // mode 'play' {bag}: starts the demo listener, drops `bag` on the page, then
 //   Step ×3, seek to `seekMs`, Play, Pause, Play to the end:
 //   {ok, error, logs: {listener}, marks: {afterSteps, afterPause, afterPauseWait, end}, info}
+// mode 'clock' {bag, pkg, exe, args, until}: starts pkg/exe args, drops `bag`, ticks
+//   /clock, plays, and waits for a log line matching `until`: {ok, error, logs: {node}}
 
 import fs from 'node:fs';
 import path from 'node:path';
@@ -34,6 +36,18 @@ const until = async (what, fn, arg, timeoutMs = 30000) => {
     throw new Error(`timed out waiting for ${what}`);
   }
 };
+/** Drop a bag on the page, as a user drags it from the file manager. */
+async function dropBag(file) {
+  const bytes = fs.readFileSync(file).toString('base64');
+  const transfer = await page.evaluateHandle(([b64, name]) => {
+    const raw = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
+    const dt = new DataTransfer();
+    dt.items.add(new File([raw], name));
+    return dt;
+  }, [bytes, path.basename(file)]);
+  await page.dispatchEvent('body', 'drop', { dataTransfer: transfer });
+  await until('the bag to open', () => !document.querySelector('#bag-player').hidden);
+}
 const heard = (id) => logsOf(id).then((lines) => lines.filter((l) => l.includes('I heard: [played')).map((l) => Number(/played (\d+)/.exec(l)[1])));
 
 try {
@@ -61,19 +75,19 @@ try {
     out.suggested = download.suggestedFilename();
     out.logs.talker = await logsOf(talker);
     out.chip = await page.textContent('#bag-state');
+  } else if (options.mode === 'clock') {
+    const node = await page.evaluate(([p, e, a]) => window.colconWasm.session.startProcess(p, e, a).id,
+      [options.pkg, options.exe, options.args]);
+    await dropBag(options.bag);
+    await page.check('#bag-clock');
+    await until('the /clock publisher', () => window.colconWasm.bag.player.clock !== null);
+    await page.click('#bag-play');
+    await until(`a line matching ${options.until}`, ([id, re]) => window.colconWasm.session.processes.get(id).log.some((e) => new RegExp(re).test(e.text)), [node, options.until], 60000);
+    out.logs.node = await logsOf(node);
   } else {
     const listener = await page.evaluate(() => window.colconWasm.session.startProcess('demo_nodes', 'listener', []).id);
     await until('the listener', (id) => window.colconWasm.session.graph.topics.some((x) => x.name === '/chatter' && x.subscribers > 0), listener);
-    // drop the bag on the page, as a user drags it from the file manager
-    const bytes = fs.readFileSync(options.bag).toString('base64');
-    const transfer = await page.evaluateHandle(([b64, name]) => {
-      const raw = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
-      const dt = new DataTransfer();
-      dt.items.add(new File([raw], name));
-      return dt;
-    }, [bytes, path.basename(options.bag)]);
-    await page.dispatchEvent('body', 'drop', { dataTransfer: transfer });
-    await until('the bag to open', () => !document.querySelector('#bag-player').hidden);
+    await dropBag(options.bag);
     out.info = await page.evaluate(() => window.colconWasm.bag.player.info);
     out.chip = await page.textContent('#bag-state');
     for (let i = 1; i <= 3; i++) {

@@ -3,7 +3,7 @@
 
 // Record and replay in the header: Record / Stop (the bag downloads when it
 // stops), Play bag… (or drop a .mcap anywhere on the page), and, once a bag
-// is open, play/pause, step, a seek bar and the rate (bag.mjs does the work).
+// is open, play/pause, step, a seek bar, the rate and /clock (bag.mjs does the work).
 
 import { h } from '../dom.mjs';
 import { PagePlayer, PageRecorder } from '../bag.mjs';
@@ -15,7 +15,7 @@ function download(url, name) {
   a.remove();
 }
 
-const clock = (ms) => `${(ms / 1000).toFixed(1)} s`;
+const seconds = (ms) => `${(ms / 1000).toFixed(1)} s`;
 
 /** The record and replay controls; `window.colconWasm.bag` holds the recorder and player. */
 export function bagControl(session) {
@@ -29,7 +29,9 @@ export function bagControl(session) {
   const seek = h('input#bag-seek', { type: 'range', min: 0, max: 0, step: 1, value: 0 });
   const rate = h('select#bag-rate', {}, ...['0.25', '0.5', '1', '2', '4', '10'].map((r) => h('option', { value: r, selected: r === '1' }, `${r}×`)));
   const position = h('span#bag-position', {}, '');
-  const bar = h('span.bag-player#bag-player', { hidden: true }, play, step, seek, position, rate);
+  const clockBox = h('input#bag-clock', { type: 'checkbox', title: 'publish /clock with the bag time (for use_sim_time nodes)' });
+  const clockLabel = h('label', {}, clockBox, '/clock');
+  const bar = h('span.bag-player#bag-player', { hidden: true }, play, step, seek, position, rate, clockLabel);
   const say = (text, state) => {
     chip.lastChild.textContent = `bag: ${text}`;
     chip.classList.toggle('ok', state === 'ok');
@@ -39,7 +41,7 @@ export function bagControl(session) {
     const s = p.state;
     play.textContent = s.state === 'playing' ? '⏸' : '▶';
     if (!seek.matches(':active')) seek.value = String(Math.round(s.position_ms));
-    position.textContent = p.info ? `${clock(s.position_ms)} / ${clock(p.info.duration_ms)}, ${p.published} sent` : '';
+    position.textContent = p.info ? `${seconds(s.position_ms)} / ${seconds(p.info.duration_ms)}, ${p.published} sent` : '';
     if (p.error) say(p.error, 'bad');
     else if (p.info) say(`${p.info.name}: ${s.state}`, s.state === 'playing' ? 'ok' : undefined);
   });
@@ -87,6 +89,7 @@ export function bagControl(session) {
   step.onclick = () => player.step();
   seek.onchange = () => player.seek(Number(seek.value));
   rate.onchange = () => player.setRate(Number(rate.value));
+  clockBox.onchange = () => player.setClock(clockBox.checked ? 40 : 0).catch((e) => say(e.message, 'bad'));
   document.addEventListener('dragover', (e) => { e.preventDefault(); });
   document.addEventListener('drop', (e) => {
     const f = [...(e.dataTransfer?.files || [])].find((x) => x.name.endsWith('.mcap'));
