@@ -52,6 +52,10 @@ class ServeCommand(CliExtensionPoint):
             help='Messages kept per Foxglove subscription while the client is behind '
                  '(default 10; older ones are dropped and counted)')
         parser.add_argument(
+            '--pyodide', metavar='DIR',
+            help='The npm package pyodide (its node_modules/pyodide folder) for Python nodes in '
+                 'the page (default: $COLCON_WASM_PYODIDE, then the colcon-wasm cache)')
+        parser.add_argument(
             '--rosbridge-token', metavar='TOKEN',
             help='rosbridge clients of the --rosbridge port must present TOKEN '
                  '(ws://HOST:PORT/?token=TOKEN)')
@@ -71,6 +75,7 @@ class ServeCommand(CliExtensionPoint):
             launcher_dir=resources.path('templates') / 'launcher',
             runtime_dir=runtime_dir, runtime_origin=runtime_origin,
             page_modules_dir=bundled)
+        _python(args, server)
         relay_server = _relay(args, install_space, server) \
             if args.rosbridge or args.foxglove else None
         if not _is_loopback(args.host):
@@ -100,6 +105,19 @@ class ServeCommand(CliExtensionPoint):
             server.shutdown()
             server.server_close()
         return 0
+
+
+def _python(args, server):
+    """Serve Pyodide for the page's Python nodes, or tell the page why not."""
+    from colcon_wasm.launch import LaunchError
+    from colcon_wasm.launch.python_nodes import find_pyodide
+    try:
+        server.site.pyodide_dir = find_pyodide(args.pyodide)
+        print(f'Python nodes: Pyodide from {server.site.pyodide_dir}')
+    except LaunchError as e:
+        server.site.pyodide_problem = str(e)
+        if args.pyodide:
+            raise
 
 
 def _foxglove(args, install_space, server):

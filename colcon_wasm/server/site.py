@@ -84,6 +84,10 @@ class Site:
         self.runtime_dir = Path(runtime_dir)
         self.page_modules_dir = Path(page_modules_dir or runtime_dir)
         self.relay_path = None
+        #: the Pyodide npm package served at /pyodide/ (python_nodes.find_pyodide), or None
+        self.pyodide_dir = None
+        #: why Python nodes cannot run in the page (shown there), when pyodide_dir is None
+        self.pyodide_problem = None
         self.runtime_origin = runtime_origin
         self.runtime_entry = runtime_entry
         self.title = title or f'colcon-wasm: {install_space.base.parent.name}'
@@ -141,6 +145,9 @@ class Site:
             'warnings': warnings,
             # serve --rosbridge: the page bridges its nodes to the relay at this path
             'rosbridge': self.relay_path,
+            # Python nodes in the page: Pyodide's URL, or why there is none
+            'python': {'pyodide': '/pyodide/' if self.pyodide_dir else None,
+                       'problem': self.pyodide_problem},
             # what every program started by the page sees (install_view.py)
             'mounts': self.views.mounts(),
             'environment': {AMENT_PREFIX_PATH: ':'.join(ament_prefixes(self.views.bases))},
@@ -227,6 +234,8 @@ class Site:
                 return Content(body=value, content_type='application/json')
             return Content(path=value, content_type='application/octet-stream',
                            precompressed=False)
+        if head == 'pyodide' and rest and self.pyodide_dir is not None:
+            return Content(path=resolve_under(self.pyodide_dir, rest))
         if head == 'favicon.ico' and not rest:
             return Content(path=resolve_under(self.launcher_dir, ['favicon.svg']),
                            content_type='image/svg+xml')

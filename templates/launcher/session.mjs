@@ -74,11 +74,14 @@ export class Session {
   async loadTypes() {
     const registry = new TypeRegistry();
     const problems = [];
+    this.typeDocuments = [];
     await Promise.all(this.workspace.types.map(async (url) => {
       try {
         const response = await fetch(url);
         if (!response.ok) throw new Error(`HTTP ${response.status}`);
-        registry.add(await response.json());
+        const document = await response.json();
+        registry.add(document);
+        this.typeDocuments.push(document);
       } catch (e) {
         problems.push(`${url}: ${e.message}`);
       }
@@ -155,6 +158,44 @@ export class Session {
       onExit: (exit) => this.exited(proc, exit),
       stdin: true, // an open standard input, typed into from the log dock
     }).then((handle) => {
+      proc.handle = handle;
+      if (proc.state === 'starting') proc.state = 'running';
+      if (proc.stopRequested) handle.stop();
+      this.emit('processes');
+    }, (error) => {
+      this.exited(proc, { code: null, crashed: true, reason: error && error.message ? error.message : String(error), stack: error && error.stack });
+    });
+    return proc;
+  }
+
+  /**
+   * Start a Python node (Pyodide in a Web Worker, the pure-Python rclpy of
+   * wasm_js/python/): its `name`.py runs as `__main__` with `args` as sys.argv[1:].
+   * Listed, logged and stopped like an executable.
+   */
+  startPython(name, source, args = []) {
+    const python = this.workspace.python || {};
+    const id = this.nextId++;
+    const exe = name.replace(/\.py$/, '');
+    const proc = {
+      id, pkg: 'python', exe, args: [...args], label: `${exe}-${id}`, state: 'starting', log: [], exit: null, handle: null,
+      started: performance.now(),
+    };
+    this.processes.set(id, proc);
+    this.addLog(proc, { severity: 'SYSTEM', text: `starting Python ${name} ${args.join(' ')}`.trim() });
+    this.emit('processes');
+    const started = (async () => {
+      if (!python.pyodide) throw new Error(python.problem || 'this serve does not serve Pyodide: start it with --pyodide DIR');
+      await this.ready;
+      const { spawnPython } = await import('/wasm_js/python/spawn.mjs');
+      return spawnPython(this.runtime, {
+        file: `/python/${name.endsWith('.py') ? name : `${name}.py`}`, source, args: proc.args, name: proc.label,
+        env: this.installView().env, pyodideUrl: python.pyodide, types: this.typeDocuments || [],
+        onLog: ({ stream, text }) => this.addLog(proc, { stream, severity: severityOf(stream, text), text }),
+        onExit: (exit) => this.exited(proc, exit),
+      });
+    })();
+    started.then((handle) => {
       proc.handle = handle;
       if (proc.state === 'starting') proc.state = 'running';
       if (proc.stopRequested) handle.stop();

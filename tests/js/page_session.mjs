@@ -10,6 +10,7 @@
 //   node page_session.mjs '<json: {url, chromium, steps, timeoutMs?}>'
 //
 // steps: {start: NAME, pkg, exe, args?} | {wait: NAME, text | regex, count?}
+//        | {python: NAME, file: PATH, args?: TEXT}: picks the file with "Run Python file…"
 //        | {sleep: MS} | {stop: NAME}
 //        | {until: JS expression (true when done), timeoutMs?, save?: NAME}: waits until the
 //          expression, evaluated in the page, is truthy; with `save` its value is in `saved`
@@ -53,6 +54,12 @@ try {
     if (step.start) {
       ids[step.start] = await page.evaluate(({ pkg, exe, args }) => window.colconWasm.session
         .startProcess(pkg, exe, args).id, { pkg: step.pkg, exe: step.exe, args: step.args || [] });
+    } else if (step.python) {
+      const before = await page.evaluate(() => window.colconWasm.session.nextId);
+      await page.fill('#python-args', step.args || '');
+      await page.setInputFiles('#python-file', step.file);
+      await page.waitForFunction((n) => window.colconWasm.session.nextId > n, before, { timeout: 10000 });
+      ids[step.python] = before;
     } else if (step.wait) {
       const deadline = Date.now() + (step.timeoutMs || timeoutMs);
       const pattern = step.regex ? new RegExp(step.regex) : null;

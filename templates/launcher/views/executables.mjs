@@ -27,7 +27,27 @@ export class ExecutablesView {
     if (total === 0) this.list.append(h('div.empty', {}, 'No executables found.'));
     this.element = h('section.executables', {},
       h('h2', {}, 'Executables', h('span.count', {}, String(total))),
-      total > 6 ? filter : null, this.list);
+      total > 6 ? filter : null, this.list, this.pythonRow(workspace));
+  }
+
+  /** Run a Python file (rclpy on Pyodide) picked from disk. */
+  pythonRow(workspace) {
+    const python = workspace.python || {};
+    const file = h('input#python-file', { type: 'file', accept: '.py', hidden: true });
+    const args = h('input#python-args', { type: 'text', placeholder: 'arguments', spellcheck: false, 'aria-label': 'arguments of the Python node' });
+    const button = h('button#python-run', {
+      title: python.pyodide ? 'run a Python node (rclpy) in a worker of this page' : (python.problem || 'Pyodide is not served'),
+      disabled: !python.pyodide,
+    }, 'Run Python file…');
+    button.onclick = () => file.click();
+    file.onchange = async () => {
+      const f = file.files[0];
+      if (!f) return;
+      this.session.startPython(f.name, await f.text(), splitArgs(args.value));
+      file.value = '';
+    };
+    this.pythonButton = { button, available: !!python.pyodide };
+    return h('details.package.python', { open: true }, h('summary', {}, 'Python (rclpy)'), h('div.row', {}, button, args, file));
   }
 
   row(pkg, exe) {
@@ -73,5 +93,6 @@ export class ExecutablesView {
 
   setEnabled(enabled) {
     for (const b of this.buttons) b.disabled = !enabled;
+    if (this.pythonButton) this.pythonButton.button.disabled = !enabled || !this.pythonButton.available;
   }
 }

@@ -1,8 +1,9 @@
 // Copyright 2026 The colcon-wasm authors. Licensed under the Apache License 2.0.
 
 /**
- * The worker of a Python node (Node.js worker_threads): loads Pyodide from
- * its npm package folder, attaches a BusClient to the Runtime's bus, gives
+ * The worker of a Python node (a Node.js worker thread, or a browser module
+ * Web Worker): loads Pyodide from its npm package folder (or the URL serve
+ * gives it), attaches a BusClient to the Runtime's bus, gives
  * Python the module `_colcon_wasm_bus` (below: nodes, endpoints, publish,
  * take and a blocking wait, with CDR through cdr.mjs's TypeRegistry), copies
  * the `rclpy` package next to this module into Pyodide's file system and runs
@@ -15,21 +16,19 @@
  * @module python/python_worker
  */
 
-import fs from 'node:fs';
-import path from 'node:path';
-import { fileURLToPath, pathToFileURL } from 'node:url';
-import { parentPort } from 'node:worker_threads';
-
 import {
   BusClient, KIND_CLIENT, KIND_PUBLISHER, KIND_SERVICE, KIND_SUBSCRIPTION, TakeMode, WAIT_ITEM_WORDS, WaitKind,
 } from '../bus_client.mjs';
 import { TypeRegistry } from '../cdr.mjs';
 import { HEADER } from '../layout.mjs';
 import { FromWorker } from '../protocol.mjs';
+import { RCLPY_FILES } from './rclpy_files.mjs';
 
 /** Where the rclpy package lives inside Pyodide's file system. */
 const PYTHON_ROOT = '/colcon_wasm/python';
-const HERE = path.dirname(fileURLToPath(import.meta.url));
+const isNode = typeof process === 'object' && !!(process.versions && process.versions.node);
+/** Node.js: worker_threads' parentPort; browser: the worker's own scope. */
+const port = isNode ? (await import('node:worker_threads')).parentPort : self;
 
 /**
  * std_msgs/msg/String when the install space has no std_msgs types.json
@@ -41,18 +40,32 @@ const STD_MSGS_STRING = {
   },
 };
 
-const post = (m) => parentPort.postMessage(m);
+const post = (m) => port.postMessage(m);
 const log = (stream, text) => post({ type: FromWorker.LOG, stream, text: String(text) });
 
-/** Every *.py file under `dir` (relative paths). */
-function pythonFiles(dir, prefix = '') {
-  const out = [];
-  for (const entry of fs.readdirSync(path.join(dir, prefix), { withFileTypes: true })) {
-    const rel = path.join(prefix, entry.name);
-    if (entry.isDirectory()) out.push(...pythonFiles(dir, rel));
-    else if (entry.name.endsWith('.py')) out.push(rel);
+/** The text of a file of the rclpy package beside this module. */
+async function rclpyFile(rel) {
+  const url = new URL(rel, import.meta.url);
+  if (isNode) {
+    const fs = await import('node:fs');
+    return fs.readFileSync(url, 'utf8');
   }
-  return out;
+  const response = await fetch(url);
+  if (!response.ok) throw new Error(`cannot load ${url}: HTTP ${response.status}`);
+  return response.text();
+}
+
+/** Import Pyodide's loader from its folder (Node.js) or URL (browser). */
+async function importPyodide(msg) {
+  if (isNode) {
+    const path = await import('node:path');
+    const { pathToFileURL } = await import('node:url');
+    const { loadPyodide } = await import(pathToFileURL(path.join(msg.pyodideDir, 'pyodide.mjs')).href);
+    return { loadPyodide, indexURL: msg.pyodideDir + path.sep };
+  }
+  const base = new URL(msg.pyodideUrl, self.location.href).href;
+  const { loadPyodide } = await import(new URL('pyodide.mjs', base).href);
+  return { loadPyodide, indexURL: base };
 }
 
 const WAIT_KINDS = { subscription: WaitKind.SUBSCRIPTION, service: WaitKind.SERVICE, client: WaitKind.CLIENT };
@@ -236,21 +249,19 @@ async function start(msg) {
     }
   }
   if (!registry.has('std_msgs/msg/String')) registry.add(STD_MSGS_STRING);
-  const { loadPyodide } = await import(pathToFileURL(path.join(msg.pyodideDir, 'pyodide.mjs')).href);
-  const pyodide = await loadPyodide({
-    indexURL: msg.pyodideDir + path.sep,
-    env: { HOME: '/home/pyodide', ...msg.env },
-  });
+  const { loadPyodide, indexURL } = await importPyodide(msg);
+  const pyodide = await loadPyodide({ indexURL, env: { HOME: '/home/pyodide', ...msg.env } });
   pyodide.setStdout({ batched: (line) => log('stdout', line) });
   pyodide.setStderr({ batched: (line) => log('stderr', line) });
   // rclpy, from beside this module
-  for (const rel of pythonFiles(HERE)) {
-    const target = `${PYTHON_ROOT}/${rel.split(path.sep).join('/')}`;
+  const sources = await Promise.all(RCLPY_FILES.map(rclpyFile));
+  RCLPY_FILES.forEach((rel, i) => {
+    const target = `${PYTHON_ROOT}/${rel}`;
     pyodide.FS.mkdirTree(target.slice(0, target.lastIndexOf('/')));
-    pyodide.FS.writeFile(target, fs.readFileSync(path.join(HERE, rel), 'utf8'));
-  }
+    pyodide.FS.writeFile(target, sources[i]);
+  });
   // the script at its real path, so that tracebacks show its lines
-  pyodide.FS.mkdirTree(path.posix.dirname(msg.file));
+  pyodide.FS.mkdirTree(msg.file.slice(0, msg.file.lastIndexOf('/')) || '/');
   pyodide.FS.writeFile(msg.file, msg.source);
   pyodide.registerJsModule('_colcon_wasm_bus', busModule(client, registry, client.createContext(), settle));
   pyodide.runPython(`import sys\nsys.path.insert(0, ${JSON.stringify(PYTHON_ROOT)})`);
@@ -264,10 +275,14 @@ async function start(msg) {
   post({ type: FromWorker.EXIT, code, crashed: code !== 0, reason, memoryCopy: false });
 }
 
-parentPort.once('message', (msg) => {
-  if (!msg || msg.type !== 'start') return;
+let started = false;
+const onStart = (msg) => {
+  if (started || !msg || msg.type !== 'start') return;
+  started = true;
   start(msg).catch((e) => {
     log('stderr', `[ERROR] [${msg.name}]: the Python worker failed: ${e && e.stack ? e.stack : e}`);
     post({ type: FromWorker.EXIT, code: 1, crashed: true, reason: `the Python worker failed: ${e && e.message ? e.message : e}` });
   });
-});
+};
+if (isNode) port.once('message', onStart);
+else port.onmessage = (e) => onStart(e.data);

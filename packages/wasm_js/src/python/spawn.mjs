@@ -3,12 +3,16 @@
 /**
  * Python nodes: a Python script run by Pyodide in its own worker, as a bus
  * process beside the Emscripten executables (the `rclpy` of
- * `python/rclpy/`). Node.js only for now (worker_threads); see
- * docs/python.md of colcon-wasm.
+ * `python/rclpy/`): a worker thread in Node.js, a module Web Worker in a
+ * browser; see docs/python.md of colcon-wasm.
  *
  *   import { spawnPython } from '.../wasm_js/src/python/spawn.mjs';
+ *   // Node.js: the script's path and the npm package's folder
  *   const proc = await spawnPython(runtime, { file: '/ws/talker.py', pyodideDir, types,
  *     onLog, onExit });
+ *   // browser: its text and the URL Pyodide is served at (colcon-wasm serve: /pyodide/)
+ *   const proc = await spawnPython(runtime, { file: '/python/talker.py', source, pyodideUrl,
+ *     types, onLog, onExit });
  *
  * The process is a NodeProcess of the runtime (logs, exit, stop(), graph
  * clean-up are the executables'): the worker speaks the program worker protocol
@@ -66,18 +70,43 @@ export async function checkPyodide(dir) {
  * @param {string[]} [spec.args] sys.argv[1:]
  * @param {Object<string, string>} [spec.env] os.environ
  * @param {string} [spec.name] a name for logs (default: the file's base name)
- * @param {string} spec.pyodideDir the npm package `pyodide` (folder of pyodide.mjs)
- * @param {Array<object|string>} [spec.types] types.json documents, or their paths
+ * @param {string} [spec.pyodideDir] Node.js: the npm package `pyodide` (folder of pyodide.mjs)
+ * @param {string} [spec.pyodideUrl] browser: the URL of that folder, served with the page
+ * @param {Array<object|string>} [spec.types] types.json documents, or (Node.js) their paths
  * @param {function(object): void} [spec.onLog] as Runtime.spawn's
  * @param {function(object): void} [spec.onExit] as Runtime.spawn's
  * @returns {Promise<NodeProcess>}
  */
 export async function spawnPython(runtime, spec) {
-  if (!isNode) {
-    throw new BusError(Code.UNSUPPORTED, 'Python nodes run in Node.js only for now (docs/python.md of colcon-wasm)');
-  }
   if (runtime._closed) throw new BusError(Code.ERROR, 'spawnPython: the runtime is closed');
   if (!spec || !spec.file) throw new BusError(Code.INVALID_ARGUMENT, 'spawnPython: missing file (the Python script)');
+  const { file, name, source, types, where } = isNode ? await nodeSpec(spec) : browserSpec(spec);
+  const env = {};
+  for (const [k, v] of Object.entries(spec.env || {})) env[k] = String(v);
+  const pid = await runtime._allocPid(PROC_KIND_NODE);
+  let worker;
+  try {
+    worker = await ProgramWorker.start(siblingUrl('python/python_worker.mjs'), { name: `python ${name}`, type: 'module' });
+  } catch (e) {
+    await runtime._reap(pid, null);
+    throw new BusError(Code.ERROR, `spawnPython '${name}': cannot start a worker: ${e.message}`);
+  }
+  const proc = new NodeProcess(runtime, pid, name, worker, { ...spec, spawnedAt: performance.now() });
+  runtime.processes.set(pid, proc);
+  worker.on('message', (m) => proc._onMessage(m));
+  worker.on('error', (e) => proc._finish({ code: 1, crashed: true, reason: `uncaught error in the Python worker: ${e.message}` }));
+  worker.on('exit', ({ code }) => {
+    proc._finish({ code, crashed: code !== 0, reason: code !== 0 ? `worker exited with code ${code}` : '' });
+  });
+  worker.postMessage({
+    type: 'start', bus: runtime.bus.handle, pid, name, file, source, args: (spec.args || []).map(String), env,
+    types, ...where,
+  });
+  return proc;
+}
+
+/** Node.js: read the script and the type descriptions, check the Pyodide folder. */
+async function nodeSpec(spec) {
   const fs = await import('node:fs');
   const path = await import('node:path');
   const file = path.resolve(spec.file);
@@ -99,26 +128,20 @@ export async function spawnPython(runtime, spec) {
       throw new BusError(Code.INVALID_ARGUMENT, `spawnPython '${name}': cannot read the type descriptions ${t}: ${e.message}`);
     }
   });
-  const env = {};
-  for (const [k, v] of Object.entries(spec.env || {})) env[k] = String(v);
-  const pid = await runtime._allocPid(PROC_KIND_NODE);
-  let worker;
-  try {
-    worker = await ProgramWorker.start(siblingUrl('python/python_worker.mjs'), { name: `python ${name}`, type: 'module' });
-  } catch (e) {
-    await runtime._reap(pid, null);
-    throw new BusError(Code.ERROR, `spawnPython '${name}': cannot start a worker: ${e.message}`);
+  return { file, name, source, types, where: { pyodideDir: path.resolve(spec.pyodideDir) } };
+}
+
+/** Browser: the script's text and the types come with the spec; Pyodide from `pyodideUrl`. */
+function browserSpec(spec) {
+  const file = String(spec.file);
+  const name = spec.name || file.slice(file.lastIndexOf('/') + 1).replace(/\.py$/, '');
+  if (typeof spec.source !== 'string') {
+    throw new BusError(Code.INVALID_ARGUMENT, `spawnPython '${name}': in a browser, pass the script's text as source`);
   }
-  const proc = new NodeProcess(runtime, pid, name, worker, { ...spec, spawnedAt: performance.now() });
-  runtime.processes.set(pid, proc);
-  worker.on('message', (m) => proc._onMessage(m));
-  worker.on('error', (e) => proc._finish({ code: 1, crashed: true, reason: `uncaught error in the Python worker: ${e.message}` }));
-  worker.on('exit', ({ code }) => {
-    proc._finish({ code, crashed: code !== 0, reason: code !== 0 ? `worker exited with code ${code}` : '' });
-  });
-  worker.postMessage({
-    type: 'start', bus: runtime.bus.handle, pid, name, file, source, args: (spec.args || []).map(String), env,
-    pyodideDir: path.resolve(spec.pyodideDir), types,
-  });
-  return proc;
+  if (!spec.pyodideUrl) {
+    throw new BusError(Code.INVALID_ARGUMENT, `spawnPython '${name}': a Python node needs Pyodide ${PYODIDE_VERSION}; `
+      + "serve it with the page (colcon-wasm serve --pyodide DIR, or COLCON_WASM_PYODIDE; see 'colcon-wasm doctor')");
+  }
+  const types = (spec.types || []).filter((t) => typeof t === 'object' && t !== null);
+  return { file, name, source: spec.source, types, where: { pyodideUrl: new URL(spec.pyodideUrl, self.location.href).href } };
 }

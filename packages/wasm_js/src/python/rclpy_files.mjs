@@ -1,0 +1,22 @@
+// Copyright 2026 The colcon-wasm authors. Licensed under the Apache License 2.0.
+
+/**
+ * The files of the pure-Python `rclpy` next to this module, for workers that
+ * cannot list a folder (a browser fetches each one). tests/test_pyodide_page.py
+ * checks the list against the folder.
+ *
+ * @module python/rclpy_files
+ */
+
+export const RCLPY_FILES = Object.freeze([
+  'rclpy/__init__.py',
+  'rclpy/_bus.py',
+  'rclpy/_messages.py',
+  'rclpy/context.py',
+  'rclpy/executors.py',
+  'rclpy/logging.py',
+  'rclpy/node.py',
+  'rclpy/parameter.py',
+  'rclpy/qos.py',
+  'rclpy/task.py',
+]);

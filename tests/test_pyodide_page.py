@@ -1,0 +1,79 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""
+Python nodes in the launcher page: Pyodide in a Web Worker, on the page's bus.
+
+`colcon-wasm serve --pyodide` serves the npm package `pyodide` (pinned,
+tests/js); the page's "Run Python file…" runs a script with the pure-Python
+rclpy of wasm_js beside the demo's C++ nodes (tests/demo_build.py) in
+headless Chromium (tests/js/page_session.mjs): a Python talker heard by the
+C++ listener, the C++ talker heard by a Python listener.
+"""
+
+from pathlib import Path
+import re
+import sys
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+import demo_build  # noqa: E402, I100, I202
+from humble_build import REPO  # noqa: E402
+
+PYODIDE = REPO / 'tests' / 'js' / 'node_modules' / 'pyodide'
+SCRIPTS = REPO / 'tests' / 'data' / 'pyodide'
+RCLPY = REPO / 'packages' / 'wasm_js' / 'src' / 'python'
+
+
+def test_the_browser_file_list_names_every_rclpy_module():
+    listed = re.findall(r"'(rclpy/[^']+\.py)'", (RCLPY / 'rclpy_files.mjs').read_text())
+    on_disk = sorted(p.relative_to(RCLPY).as_posix() for p in (RCLPY / 'rclpy').rglob('*.py'))
+    assert listed == on_disk
+
+
+def test_python_nodes_in_the_page_talk_to_cpp_nodes():
+    from served_page import explain_page
+    from served_page import ServedPage
+    assert (PYODIDE / 'pyodide.asm.wasm').is_file(), f'run npm ci in {PYODIDE.parent.parent}'
+    steps = [
+        {'start': 'listener', 'pkg': 'demo_nodes', 'exe': 'listener'},
+        {'python': 'py_talker', 'file': str(SCRIPTS / 'talker.py')},
+        {'wait': 'listener', 'text': 'I heard: [Hello from Python: 3]', 'timeoutMs': 90000},
+        {'start': 'talker', 'pkg': 'demo_nodes', 'exe': 'talker'},
+        {'python': 'py_listener', 'file': str(SCRIPTS / 'listener.py')},
+        {'wait': 'py_listener', 'regex': r'I heard: \[Hello World: \d+\] count=\d+',
+         'count': 2, 'timeoutMs': 90000},
+        {'stop': 'py_talker'},
+    ]
+    with ServedPage(demo_build.demo_install(), args=['--pyodide', PYODIDE]) as page:
+        result = page.run(steps, timeout_ms=180000)
+    assert result['ok'], explain_page(result)
+    talked = [line for line in result['logs']['py_talker']
+              if 'Publishing: "Hello from Python' in line]
+    heard = [int(n) for n in re.findall(r'I heard: \[Hello from Python: (\d+)\]',
+                                        '\n'.join(result['logs']['listener']))]
+    assert heard and heard == sorted(heard) and len(heard) <= len(talked), (heard, talked)
+    pairs = re.findall(r'I heard: \[Hello World: (\d+)\] count=(\d+)',
+                       '\n'.join(result['logs']['py_listener']))
+    assert pairs and all(a == b for a, b in pairs), result['logs']['py_listener']
+    assert result['states']['py_talker'] == 'stopped', result['states']
+
+
+def test_without_pyodide_the_page_says_how_to_get_it(tmp_path):
+    import json
+    import os
+    from urllib.request import urlopen
+    from served_page import ServedPage
+    env = {k: v for k, v in os.environ.items() if k != 'COLCON_WASM_PYODIDE'}
+    env['COLCON_WASM_CACHE'] = str(tmp_path)
+    env['HOME'] = str(tmp_path)
+    page = ServedPage(demo_build.demo_install())
+    page.env = env
+    with page:
+        with urlopen(page.url + 'workspace.json', timeout=10) as response:
+            python = json.loads(response.read())['python']
+        with urlopen(page.url + 'launcher/app.mjs', timeout=10) as response:
+            assert response.status == 200
+    assert python['pyodide'] is None, python
+    assert 'Python nodes need Pyodide' in python['problem'], python
+    assert 'npm install --prefix' in python['problem'], python
