@@ -59,6 +59,38 @@ def test_python_nodes_in_the_page_talk_to_cpp_nodes():
     assert result['states']['py_talker'] == 'stopped', result['states']
 
 
+def test_the_python_console_publishes_to_a_cpp_listener():
+    """Lines typed into the log dock run in the console; a typo gets a traceback, then on."""
+    from served_page import explain_page
+    from served_page import ServedPage
+    steps = [
+        {'start': 'listener', 'pkg': 'demo_nodes', 'exe': 'listener'},
+        {'pythonConsole': 'console'},
+        {'wait': 'console', 'text': 'rclpy is imported', 'timeoutMs': 90000},
+        {'type': 'console', 'line': 'from demo_interfaces.msg import Chatter'},
+        {'type': 'console', 'line': "node = rclpy.create_node('repl')"},
+        {'type': 'console', 'line': "pub = node.create_publisher(Chatter, 'chatter', 10)"},
+        {'type': 'console', 'line': 'pub.get_subscription_count()'},
+        {'wait': 'console', 'text': '>>> pub.get_subscription_count()'},
+        {'type': 'console', 'line': 'undefined_name'},
+        {'wait': 'console', 'text': "NameError: name 'undefined_name' is not defined"},
+        {'type': 'console', 'line': 'for i in range(3):'},
+        {'type': 'console', 'line': "    pub.publish(Chatter(data=f'typed {i}', count=i))"},
+        {'type': 'console', 'line': ''},
+        {'wait': 'listener', 'text': 'I heard: [typed 2]', 'timeoutMs': 30000},
+        {'stop': 'console'},
+    ]
+    with ServedPage(demo_build.demo_install(), args=['--pyodide', PYODIDE]) as page:
+        result = page.run(steps, timeout_ms=180000)
+    assert result['ok'], explain_page(result)
+    console = result['logs']['console']
+    assert '>>> for i in range(3):' in console and \
+        "...     pub.publish(Chatter(data=f'typed {i}', count=i))" in console, console
+    assert '1' in console, console  # get_subscription_count(): the C++ listener
+    heard = re.findall(r'I heard: \[typed (\d)\]', '\n'.join(result['logs']['listener']))
+    assert heard == ['0', '1', '2'], result['logs']['listener']
+
+
 def test_without_pyodide_the_page_says_how_to_get_it(tmp_path):
     import json
     import os

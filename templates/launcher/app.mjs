@@ -114,6 +114,8 @@ async function main() {
   const { nav, show } = tabs(views);
   const logs = new LogsDock(session);
   processes.onSelect = (id) => logs.select(id);
+  // the console's input is the log dock's line: show its tab
+  executables.onConsole = (id) => logs.select(id);
   // the main grid: banners and tabs, the visible view, the logs dock
   const viewHost = h('div.viewhost', {}, ...Object.values(views).map((v) => v.element));
   main.append(h('div', {}, banners, nav), viewHost, logs.element);

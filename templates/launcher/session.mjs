@@ -173,7 +173,7 @@ export class Session {
    * wasm_js/python/): its `name`.py runs as `__main__` with `args` as sys.argv[1:].
    * Listed, logged and stopped like an executable.
    */
-  startPython(name, source, args = []) {
+  startPython(name, source, args = [], { stdin = false } = {}) {
     const python = this.workspace.python || {};
     const id = this.nextId++;
     const exe = name.replace(/\.py$/, '');
@@ -190,7 +190,7 @@ export class Session {
       const { spawnPython } = await import('/wasm_js/python/spawn.mjs');
       return spawnPython(this.runtime, {
         file: `/python/${name.endsWith('.py') ? name : `${name}.py`}`, source, args: proc.args, name: proc.label,
-        env: this.installView().env, pyodideUrl: python.pyodide, types: this.typeDocuments || [],
+        env: this.installView().env, pyodideUrl: python.pyodide, types: this.typeDocuments || [], stdin,
         onLog: ({ stream, text }) => this.addLog(proc, { stream, severity: severityOf(stream, text), text }),
         onExit: (exit) => this.exited(proc, exit),
       });
@@ -204,6 +204,16 @@ export class Session {
       this.exited(proc, { code: null, crashed: true, reason: error && error.message ? error.message : String(error), stack: error && error.stack });
     });
     return proc;
+  }
+
+  /**
+   * Start the Python console: a REPL (wasm_js/python/console.py) with rclpy
+   * imported, read from the process' standard input (the log dock's line).
+   */
+  async startPythonConsole() {
+    const response = await fetch('/wasm_js/python/console.py');
+    if (!response.ok) throw new Error(`cannot load the Python console: HTTP ${response.status} for /wasm_js/python/console.py`);
+    return this.startPython('python_console.py', await response.text(), [], { stdin: true });
   }
 
   /**

@@ -11,6 +11,8 @@
 //
 // steps: {start: NAME, pkg, exe, args?} | {wait: NAME, text | regex, count?}
 //        | {python: NAME, file: PATH, args?: TEXT}: picks the file with "Run Python file…"
+//        | {pythonConsole: NAME}: presses "Python console"
+//        | {type: NAME, line: TEXT}: types a line into the log dock's stdin field (NAME's tab shown)
 //        | {sleep: MS} | {stop: NAME}
 //        | {until: JS expression (true when done), timeoutMs?, save?: NAME}: waits until the
 //          expression, evaluated in the page, is truthy; with `save` its value is in `saved`
@@ -60,6 +62,18 @@ try {
       await page.setInputFiles('#python-file', step.file);
       await page.waitForFunction((n) => window.colconWasm.session.nextId > n, before, { timeout: 10000 });
       ids[step.python] = before;
+    } else if (step.pythonConsole) {
+      const before = await page.evaluate(() => window.colconWasm.session.nextId);
+      await page.click('#python-console');
+      await page.waitForFunction((n) => window.colconWasm.session.nextId > n, before, { timeout: 10000 });
+      ids[step.pythonConsole] = before;
+    } else if (step.type) {
+      await page.waitForFunction((id) => window.colconWasm.session.processes.get(id).state === 'running',
+        ids[step.type], { timeout: step.timeoutMs || timeoutMs });
+      const input = 'form.stdin:not([hidden]) input';
+      await page.waitForSelector(input, { timeout: 10000 });
+      await page.fill(input, step.line);
+      await page.press(input, 'Enter');
     } else if (step.wait) {
       const deadline = Date.now() + (step.timeoutMs || timeoutMs);
       const pattern = step.regex ? new RegExp(step.regex) : null;

@@ -231,7 +231,7 @@ function noStdin() {
  * @param {BusClient} client
  * @returns {function(object, Uint8Array, number, number): number} an Emscripten device read
  */
-function blockingStdinRead(pipe, client) {
+export function blockingStdinRead(pipe, client) {
   const service = () => {
     const bus = globalThis.WasmBus;
     if (bus && bus.client && typeof bus.client.service === 'function') bus.client.service();

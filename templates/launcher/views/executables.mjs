@@ -40,14 +40,20 @@ export class ExecutablesView {
       disabled: !python.pyodide,
     }, 'Run Python file…');
     button.onclick = () => file.click();
+    const consoleButton = h('button#python-console', {
+      title: python.pyodide ? 'a Python REPL with rclpy on this page\'s bus: type into the log dock' : (python.problem || 'Pyodide is not served'),
+      disabled: !python.pyodide,
+      onclick: () => this.session.startPythonConsole().then((proc) => this.onConsole && this.onConsole(proc.id)).catch((e) => { consoleButton.title = e.message; }),
+    }, 'Python console');
     file.onchange = async () => {
       const f = file.files[0];
       if (!f) return;
       this.session.startPython(f.name, await f.text(), splitArgs(args.value));
       file.value = '';
     };
-    this.pythonButton = { button, available: !!python.pyodide };
-    return h('details.package.python', { open: true }, h('summary', {}, 'Python (rclpy)'), h('div.row', {}, button, args, file));
+    this.pythonButtons = { buttons: [button, consoleButton], available: !!python.pyodide };
+    return h('details.package.python', { open: true }, h('summary', {}, 'Python (rclpy)'),
+      h('div.row', {}, button, args, file), h('div.row', {}, consoleButton));
   }
 
   row(pkg, exe) {
@@ -93,6 +99,8 @@ export class ExecutablesView {
 
   setEnabled(enabled) {
     for (const b of this.buttons) b.disabled = !enabled;
-    if (this.pythonButton) this.pythonButton.button.disabled = !enabled || !this.pythonButton.available;
+    if (this.pythonButtons) {
+      for (const b of this.pythonButtons.buttons) b.disabled = !enabled || !this.pythonButtons.available;
+    }
   }
 }

@@ -21,7 +21,9 @@ import {
 } from '../bus_client.mjs';
 import { TypeRegistry } from '../cdr.mjs';
 import { HEADER } from '../layout.mjs';
+import { blockingStdinRead } from '../program_worker.mjs';
 import { FromWorker } from '../protocol.mjs';
+import { StdinPipe } from '../stdin_pipe.mjs';
 import { RCLPY_FILES } from './rclpy_files.mjs';
 
 /** Where the rclpy package lives inside Pyodide's file system. */
@@ -253,6 +255,11 @@ async function start(msg) {
   const pyodide = await loadPyodide({ indexURL, env: { HOME: '/home/pyodide', ...msg.env } });
   pyodide.setStdout({ batched: (line) => log('stdout', line) });
   pyodide.setStderr({ batched: (line) => log('stderr', line) });
+  if (msg.stdin) {
+    // an open standard input (the page's console): reads block like a terminal's
+    const read = blockingStdinRead(new StdinPipe(msg.stdin), client);
+    pyodide.setStdin({ read: (buffer) => read(null, buffer, 0, buffer.length) });
+  }
   // rclpy, from beside this module
   const sources = await Promise.all(RCLPY_FILES.map(rclpyFile));
   RCLPY_FILES.forEach((rel, i) => {

@@ -24,6 +24,7 @@
 import { BusError, Code } from '../bus.mjs';
 import { PROC_KIND_NODE } from '../layout.mjs';
 import { ProgramWorker, isNode, siblingUrl } from '../platform.mjs';
+import { makeStdinPipe } from '../node_process.mjs';
 import { NodeProcess } from '../runtime.mjs';
 
 /** The Pyodide release (npm package `pyodide`) this runtime is written and tested for. */
@@ -73,6 +74,8 @@ export async function checkPyodide(dir) {
  * @param {string} [spec.pyodideDir] Node.js: the npm package `pyodide` (folder of pyodide.mjs)
  * @param {string} [spec.pyodideUrl] browser: the URL of that folder, served with the page
  * @param {Array<object|string>} [spec.types] types.json documents, or (Node.js) their paths
+ * @param {string|Uint8Array|boolean} [spec.stdin] standard input, as Runtime.spawn's
+ *   (`true`: an open one, written with NodeProcess.writeStdin; the page's console)
  * @param {function(object): void} [spec.onLog] as Runtime.spawn's
  * @param {function(object): void} [spec.onExit] as Runtime.spawn's
  * @returns {Promise<NodeProcess>}
@@ -91,7 +94,8 @@ export async function spawnPython(runtime, spec) {
     await runtime._reap(pid, null);
     throw new BusError(Code.ERROR, `spawnPython '${name}': cannot start a worker: ${e.message}`);
   }
-  const proc = new NodeProcess(runtime, pid, name, worker, { ...spec, spawnedAt: performance.now() });
+  const stdinPipe = makeStdinPipe(spec.stdin);
+  const proc = new NodeProcess(runtime, pid, name, worker, { ...spec, spawnedAt: performance.now(), stdinPipe });
   runtime.processes.set(pid, proc);
   worker.on('message', (m) => proc._onMessage(m));
   worker.on('error', (e) => proc._finish({ code: 1, crashed: true, reason: `uncaught error in the Python worker: ${e.message}` }));
@@ -100,7 +104,7 @@ export async function spawnPython(runtime, spec) {
   });
   worker.postMessage({
     type: 'start', bus: runtime.bus.handle, pid, name, file, source, args: (spec.args || []).map(String), env,
-    types, ...where,
+    types, stdin: stdinPipe && stdinPipe.sab, ...where,
   });
   return proc;
 }
