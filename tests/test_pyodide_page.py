@@ -91,6 +91,50 @@ def test_the_python_console_publishes_to_a_cpp_listener():
     assert heard == ['0', '1', '2'], result['logs']['listener']
 
 
+SET_FROM_THE_PAGE = """(async () => {
+  const { ParameterClient } = await import('/wasm_js/page/ros_clients.mjs');
+  const s = colconWasm.session;
+  const client = new ParameterClient(s.toolsBus(), s.registry, '/py_params');
+  const names = await client.list();
+  if (!names.includes('greeting')) return false;
+  const before = await client.get(['greeting', 'rate']);
+  const set = await client.set('greeting', 'from the page');
+  const refused = await client.set('rate', 0);
+  const after = await client.get(['greeting', 'rate']);
+  const plain = (k, v) => (typeof v === 'bigint' ? Number(v) : v);
+  return JSON.stringify({ names, before, set, refused, after }, plain);
+})().catch((e) => JSON.stringify({ error: String(e && e.stack || e) }))"""
+
+
+def test_parameters_set_from_the_page_reach_a_python_node():
+    """The page's parameter client and an rclcpp AsyncParametersClient use its services."""
+    from rclcpp_build import rclcpp_build
+    from served_page import explain_page
+    from served_page import ServedPage
+    import json
+    steps = [
+        {'python': 'params', 'file': str(SCRIPTS / 'params_node.py')},
+        {'wait': 'params', 'text': 'READY', 'timeoutMs': 90000},
+        {'until': SET_FROM_THE_PAGE, 'save': 'page', 'timeoutMs': 30000},
+        {'wait': 'params', 'text': "PARAM greeting now 'from the page'"},
+        {'start': 'reader', 'pkg': 'rmw_wasm_cpp_node_tests', 'exe': 'probe',
+         'args': ['param_reader', '/py_params', 'greeting']},
+        {'wait': 'reader', 'text': 'PARAM greeting=from the page', 'timeoutMs': 30000},
+    ]
+    with ServedPage(rclcpp_build().install, args=['--pyodide', PYODIDE]) as page:
+        result = page.run(steps, timeout_ms=180000)
+    assert result['ok'], explain_page(result)
+    seen = json.loads(result['saved']['page'])
+    assert 'error' not in seen, seen
+    assert seen['names'] == ['greeting', 'rate'], seen
+    assert [(p['name'], p['value']) for p in seen['before']] == [('greeting', 'hello'),
+                                                                 ('rate', 5)], seen
+    assert seen['set']['successful'] is True, seen
+    assert seen['refused'] == {'successful': False, 'reason': 'rate must be > 0'}, seen
+    assert [(p['name'], p['value']) for p in seen['after']] == [
+        ('greeting', 'from the page'), ('rate', 5)], seen
+
+
 def test_without_pyodide_the_page_says_how_to_get_it(tmp_path):
     import json
     import os

@@ -17,6 +17,7 @@ export const RCLPY_FILES = Object.freeze([
   'rclpy/logging.py',
   'rclpy/node.py',
   'rclpy/parameter.py',
+  'rclpy/parameter_service.py',
   'rclpy/qos.py',
   'rclpy/task.py',
 ]);

@@ -172,16 +172,17 @@ class Message:
     """Base of the generated message classes."""
 
     __slots__ = ()
-    _fields = ()
-    _type = ''
+    # class data, named so that no field's slot (``_<field>``) can meet them
+    _field_specs = ()
+    _ros_type = ''
 
     def __init__(self, **kwargs):
         """Set the fields given, the others to their defaults."""
-        names = {f['name'] for f in self._fields}
+        names = {f['name'] for f in self._field_specs}
         assert all(k in names for k in kwargs), \
             ('Invalid arguments passed to constructor: '
              f"{', '.join(sorted((k for k in kwargs if k not in names)))}")
-        for field in self._fields:
+        for field in self._field_specs:
             name = field['name']
             if name in kwargs:
                 setattr(self, name, kwargs[name])
@@ -192,7 +193,7 @@ class Message:
     def get_fields_and_field_types(cls):
         """Return {field name: ROS type} as rosidl_generator_py's classes do."""
         result = {}
-        for field in cls._fields:
+        for field in cls._field_specs:
             kind = field['type']
             if field.get('array_size') is not None:
                 kind = f"{kind}[{field['array_size']}]"
@@ -206,22 +207,22 @@ class Message:
         """Equal when of the same class with equal fields."""
         if not isinstance(other, self.__class__):
             return False
-        return all(getattr(self, f['name']) == getattr(other, f['name']) for f in self._fields)
+        return all(getattr(self, f['name']) == getattr(other, f['name']) for f in self._field_specs)
 
     def __repr__(self):
         """``pkg.msg.Name(field=value, ...)``."""
         module = self.__class__.__module__
         args = ', '.join(f"{f['name']}={getattr(self, f['name'])!r}"
-                         for f in self._fields)
+                         for f in self._field_specs)
         return f'{module}.{self.__class__.__name__}({args})'
 
     def _to_plain(self):
-        return {f['name']: _to_plain(f, getattr(self, f"_{f['name']}")) for f in self._fields}
+        return {f['name']: _to_plain(f, getattr(self, f"_{f['name']}")) for f in self._field_specs}
 
     @classmethod
     def _from_plain(cls, plain):
         msg = cls.__new__(cls)
-        for field in cls._fields:
+        for field in cls._field_specs:
             object.__setattr__(msg, f"_{field['name']}", _from_plain(field, plain[field['name']]))
         return msg
 
@@ -242,8 +243,8 @@ def _make_class(full, description, module):
     pkg, kind, name = full.split('/')
     namespace = {
         '__slots__': tuple(f"_{f['name']}" for f in description['fields']),
-        '_fields': tuple(description['fields']),
-        '_type': full,
+        '_field_specs': tuple(description['fields']),
+        '_ros_type': full,
         '__module__': module,
         '__doc__': description.get('definition') or f'Message {full}.',
     }
@@ -285,7 +286,7 @@ def service_class(full):
         cls = type(name, (), {
             'Request': message_class(description['request']),
             'Response': message_class(description['response']),
-            '_type': full,
+            '_ros_type': full,
             '__module__': f'{pkg}.{kind}',
             '__doc__': description.get('definition') or f'Service {full}.',
         })
@@ -295,7 +296,7 @@ def service_class(full):
 
 def type_name(msg_type):
     """Return the ROS type name of a generated message or service class."""
-    name = getattr(msg_type, '_type', None)
+    name = getattr(msg_type, '_ros_type', None)
     if not name:
         raise TypeError(f'{msg_type!r} is not a message or service class of this rclpy (import '
                         'it from <package>.msg or <package>.srv)')

@@ -6,6 +6,7 @@
 import time
 
 from rclpy import _messages
+from rclpy import parameter_service
 from rclpy._bus import bus
 from rclpy._bus import plain_to_js
 from rclpy.context import default_context
@@ -265,6 +266,9 @@ class Node:
         self._parameter_callbacks = []
         self._overrides = self.context.parameter_overrides(node_name, cli_args)
         self.context._nodes.append(self)
+        self._parameter_service = None
+        if kwargs.get('start_parameter_services', True) and parameter_service.available():
+            self._parameter_service = parameter_service.ParameterService(self)
 
     def get_name(self):
         """Return the node's name."""
@@ -368,6 +372,8 @@ class Node:
         if not result.successful:
             raise InvalidParameterValueException(name, value, result.reason)
         self._parameters[name] = parameter
+        if self._parameter_service is not None:
+            self._parameter_service.publish_event(new=[parameter])
         return parameter
 
     def declare_parameters(self, namespace, parameters):
@@ -404,6 +410,8 @@ class Node:
             result = self._run_parameter_callbacks([parameter])
             if result.successful:
                 self._parameters[parameter.name] = parameter
+                if self._parameter_service is not None:
+                    self._parameter_service.publish_event(changed=[parameter])
             results.append(result)
         return results
 

@@ -1,7 +1,7 @@
 # Copyright 2026 colcon-wasm contributors
 # Licensed under the Apache License, Version 2.0
 
-"""Parameters of a node, kept in the process (rclpy.parameter.Parameter); no services yet."""
+"""Parameters of a node (rclpy.parameter.Parameter); parameter_service.py serves them."""
 
 import enum
 
