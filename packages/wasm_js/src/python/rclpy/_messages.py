@@ -207,7 +207,8 @@ class Message:
         """Equal when of the same class with equal fields."""
         if not isinstance(other, self.__class__):
             return False
-        return all(getattr(self, f['name']) == getattr(other, f['name']) for f in self._field_specs)
+        return all(getattr(self, f['name']) == getattr(other, f['name'])
+                   for f in self._field_specs)
 
     def __repr__(self):
         """``pkg.msg.Name(field=value, ...)``."""
