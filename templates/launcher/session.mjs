@@ -149,7 +149,7 @@ export class Session {
       });
     }
     this.emit('processes');
-    this.runtime.spawn({
+    const started = this.runtime.spawn({
       url: new URL(info.url, location.href).href,
       args: proc.args,
       name: proc.label,
@@ -157,7 +157,13 @@ export class Session {
       onLog: ({ stream, text }) => this.addLog(proc, { stream, severity: severityOf(stream, text), text }),
       onExit: (exit) => this.exited(proc, exit),
       stdin: true, // an open standard input, typed into from the log dock
-    }).then((handle) => {
+    });
+    return this.track(proc, started);
+  }
+
+  /** Follow a spawn: the process runs once it resolves, or crashed with its error. */
+  track(proc, started) {
+    started.then((handle) => {
       proc.handle = handle;
       if (proc.state === 'starting') proc.state = 'running';
       if (proc.stopRequested) handle.stop();
@@ -195,15 +201,7 @@ export class Session {
         onExit: (exit) => this.exited(proc, exit),
       });
     })();
-    started.then((handle) => {
-      proc.handle = handle;
-      if (proc.state === 'starting') proc.state = 'running';
-      if (proc.stopRequested) handle.stop();
-      this.emit('processes');
-    }, (error) => {
-      this.exited(proc, { code: null, crashed: true, reason: error && error.message ? error.message : String(error), stack: error && error.stack });
-    });
-    return proc;
+    return this.track(proc, started);
   }
 
   /**
