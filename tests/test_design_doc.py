@@ -169,3 +169,22 @@ def test_long_js_modules_say_why_at_their_top():
     assert not unexplained, (
         f'JS modules over {LONG_MODULE_LINES} lines without "{LONG_MODULE_REASON}: <why>" in '
         f'their first 60 lines (split them, or say why not): {unexplained}')
+
+
+def test_every_exception_class_of_colcon_wasm_is_a_colcon_wasm_error():
+    import ast
+    outside = []
+    for file in tracked_files():
+        if not file.startswith('colcon_wasm/') or not file.endswith('.py'):
+            continue
+        tree = ast.parse((REPO / file).read_text(encoding='utf-8'))
+        for node in ast.walk(tree):
+            if not isinstance(node, ast.ClassDef):
+                continue
+            bases = [ast.unparse(b) for b in node.bases]
+            builtin = [b for b in bases if b in ('Exception', 'ValueError', 'RuntimeError',
+                                                 'OSError', 'TypeError', 'KeyError')]
+            if builtin and 'ColconWasmError' not in bases and node.name != 'ColconWasmError':
+                outside.append(f'{file}: class {node.name}({", ".join(bases)})')
+    assert not outside, ('exceptions outside the ColconWasmError family (colcon_wasm/error.py):\n'
+                         + '\n'.join(outside))

@@ -12,6 +12,7 @@ opcode byte first. Wire format only: no logic.
 
 import struct
 
+from colcon_wasm.error import ColconWasmError
 from colcon_wasm.server.websocket import accept_key
 
 SUBPROTOCOLS = ('foxglove.websocket.v1', 'foxglove.sdk.v1')
@@ -33,7 +34,7 @@ _PUBLISH_HEAD = struct.Struct('<BI')
 INFO, WARNING, ERROR = 0, 1, 2
 
 
-class WireError(ValueError):
+class WireError(ColconWasmError):
     """A binary client message that is not one of the protocol's."""
 
 

@@ -34,6 +34,7 @@ import time
 import zlib
 
 import cbor2
+from colcon_wasm.error import ColconWasmError
 
 NUMERIC = {'byte': 'B', 'char': 'B', 'uint8': 'B', 'int8': 'b', 'int16': 'h', 'uint16': 'H',
            'int32': 'i', 'uint32': 'I', 'int64': 'q', 'uint64': 'Q', 'float32': 'f',
@@ -50,7 +51,7 @@ TIME = 'builtin_interfaces/msg/Time'
 COMPRESSION_RANK = {'none': 0, 'png': 1, 'cbor': 2, 'cbor-raw': 3}
 
 
-class FormError(Exception):
+class FormError(ColconWasmError):
     """A message that does not fit its type description; the text names the field."""
 
 
