@@ -39,8 +39,10 @@ from colcon_core.logging import colcon_logger
 from colcon_wasm.ros2msg import SchemaError
 from colcon_wasm.server import foxglove_wire as wire
 from colcon_wasm.server.http import ServeError
+from colcon_wasm.server.relay_http import refuse
 from colcon_wasm.server.websocket import connect
 from colcon_wasm.server.websocket import Connection
+from colcon_wasm.server.websocket import handshake_response
 
 logger = colcon_logger.getChild(__name__)
 
@@ -464,16 +466,10 @@ class _FoxgloveRequestHandler(BaseHTTPRequestHandler):
     def do_GET(self):  # noqa: N802
         """Upgrade with a Foxglove subprotocol, or refuse."""
         subprotocol = wire.choose_subprotocol(self.headers)
-        response = wire.handshake_response(self.headers, subprotocol) if subprotocol else None
+        response = handshake_response(self.headers, subprotocol) if subprotocol else None
         if response is None:
-            offered = ' or '.join(wire.SUBPROTOCOLS)
-            body = ('a Foxglove WebSocket server: connect with the subprotocol '
-                    f'{offered}\n').encode('utf-8')
-            self.send_response(400)
-            self.send_header('Content-Type', 'text/plain; charset=utf-8')
-            self.send_header('Content-Length', str(len(body)))
-            self.end_headers()
-            self.wfile.write(body)
+            refuse(self, 400, 'a Foxglove WebSocket server: connect with the subprotocol '
+                              f"{' or '.join(wire.SUBPROTOCOLS)}")
             return
         self.connection.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
         self.connection.sendall(response)

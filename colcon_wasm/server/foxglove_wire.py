@@ -2,7 +2,7 @@
 # Licensed under the Apache License, Version 2.0
 
 """
-The Foxglove WebSocket protocol's binary messages and its subprotocol handshake.
+The Foxglove WebSocket protocol's binary messages and its subprotocols.
 
 As foxglove/ws-protocol ``docs/spec.md`` defines them (the Node.js server of
 ``run``/``launch --foxglove`` speaks the same, in
@@ -13,7 +13,6 @@ opcode byte first. Wire format only: no logic.
 import struct
 
 from colcon_wasm.error import ColconWasmError
-from colcon_wasm.server.websocket import accept_key
 
 SUBPROTOCOLS = ('foxglove.websocket.v1', 'foxglove.sdk.v1')
 
@@ -88,13 +87,3 @@ def choose_subprotocol(headers):
     """Return the first of the client's offered subprotocols that is Foxglove's, or None."""
     offered = [p.strip() for p in (headers.get('Sec-WebSocket-Protocol') or '').split(',')]
     return next((p for p in offered if p in SUBPROTOCOLS), None)
-
-
-def handshake_response(headers, subprotocol):
-    """Return the 101 response that accepts ``subprotocol``, or None if it is no upgrade."""
-    key = headers.get('Sec-WebSocket-Key')
-    if 'websocket' not in (headers.get('Upgrade') or '').lower() or not key:
-        return None
-    return ('HTTP/1.1 101 Switching Protocols\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n'
-            f'Sec-WebSocket-Accept: {accept_key(key.strip())}\r\n'
-            f'Sec-WebSocket-Protocol: {subprotocol}\r\n\r\n').encode('ascii')

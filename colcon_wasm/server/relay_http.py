@@ -24,7 +24,8 @@ from colcon_wasm.server.websocket import handshake_response
 RELAY_PATH = '/rosbridge'
 
 
-def _refuse(handler, status, text):
+def refuse(handler, status, text):
+    """Answer an HTTP request that is not let in with a plain-text status and close it."""
     body = (text + '\n').encode('utf-8')
     handler.send_response(status)
     handler.send_header('Content-Type', 'text/plain; charset=utf-8')
@@ -57,17 +58,17 @@ def upgrade(handler, endpoint, *, token=None, same_origin=False, path=RELAY_PATH
         if origin is not None and urlsplit(origin).netloc != host:
             other = ('; other rosbridge clients connect to the --rosbridge port'
                      if path == RELAY_PATH else '')
-            _refuse(handler, 403, f'only the pages of this colcon-wasm serve may use {path}'
-                                  f'{other}')
+            refuse(handler, 403, f'only the pages of this colcon-wasm serve may use {path}'
+                                 f'{other}')
             return
     if token and not hmac.compare_digest(_token(handler), token):
-        _refuse(handler, 401, 'this rosbridge relay needs a token: connect to '
-                              'ws://HOST:PORT/?token=TOKEN (or send Authorization: Bearer TOKEN)')
+        refuse(handler, 401, 'this rosbridge relay needs a token: connect to '
+                             'ws://HOST:PORT/?token=TOKEN (or send Authorization: Bearer TOKEN)')
         return
     response = handshake_response(handler.headers)
     if response is None:
-        _refuse(handler, 400, f'{path} is a WebSocket endpoint: connect with a WebSocket '
-                              'client (ws://)')
+        refuse(handler, 400, f'{path} is a WebSocket endpoint: connect with a WebSocket '
+                             'client (ws://)')
         return
     handler.connection.sendall(response)
     handler.close_connection = True

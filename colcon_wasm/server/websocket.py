@@ -43,17 +43,19 @@ def accept_key(key):
     return base64.b64encode(digest).decode('ascii')
 
 
-def handshake_response(headers):
+def handshake_response(headers, subprotocol=None):
     """
     Return the 101 response to an upgrade request, or None if it is not one.
 
     :param headers: a mapping of the request's headers (case-insensitive get)
+    :param subprotocol: the subprotocol accepted (Sec-WebSocket-Protocol), if any
     """
     key = headers.get('Sec-WebSocket-Key')
     if 'websocket' not in (headers.get('Upgrade') or '').lower() or not key:
         return None
+    protocol = f'Sec-WebSocket-Protocol: {subprotocol}\r\n' if subprotocol else ''
     return ('HTTP/1.1 101 Switching Protocols\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n'
-            f'Sec-WebSocket-Accept: {accept_key(key.strip())}\r\n\r\n').encode('ascii')
+            f'Sec-WebSocket-Accept: {accept_key(key.strip())}\r\n{protocol}\r\n').encode('ascii')
 
 
 def encode_frame(opcode, payload, masked=False):
