@@ -25,7 +25,6 @@ not bridge their nodes' parameter services to the relay (``run``/``launch
 """
 
 import collections
-import errno
 from http.server import BaseHTTPRequestHandler
 from http.server import ThreadingHTTPServer
 import itertools
@@ -38,7 +37,7 @@ import cbor2
 from colcon_core.logging import colcon_logger
 from colcon_wasm.ros2msg import SchemaError
 from colcon_wasm.server import foxglove_wire as wire
-from colcon_wasm.server.http import ServeError
+from colcon_wasm.server.http import bind_error
 from colcon_wasm.server.relay_http import refuse
 from colcon_wasm.server.websocket import connect
 from colcon_wasm.server.websocket import Connection
@@ -106,13 +105,9 @@ class FoxgloveRelayServer(ThreadingHTTPServer):
         try:
             super().__init__((host, port), _FoxgloveRequestHandler)
         except OSError as e:
-            if e.errno == errno.EADDRINUSE:
-                raise ServeError(
-                    f'port {port} on {host} is already in use (another Foxglove server or '
-                    'foxglove_bridge?): stop it, or pass --foxglove HOST:PORT (port 0 picks a '
-                    'free port)') from None
-            raise ServeError(f'cannot listen on {host}:{port} for --foxglove: '
-                             f'{e.strerror or e}') from None
+            raise bind_error(e, host, port, other='another Foxglove server or foxglove_bridge?',
+                             fix='--foxglove HOST:PORT (port 0 picks a free port)',
+                             option='--foxglove') from None
         self.link = RelayLink(relay_url, self._from_relay)
         threading.Thread(target=self._catalog_loop, daemon=True).start()
 

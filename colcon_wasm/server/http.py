@@ -44,6 +44,27 @@ class ServeError(ColconWasmError):
     """The server cannot start; the message says why and what to do."""
 
 
+def bind_error(error, host, port, *, other, fix, option='', permission_fix=None):
+    """
+    Say why a listener could not bind ``host:port`` and what to do.
+
+    :param error: the OSError of the bind
+    :param other: who may hold the port (e.g. 'another rosbridge server, or another server?')
+    :param fix: the option to pass instead (e.g. '--rosbridge HOST:PORT (port 0 picks ...)')
+    :param option: the option the listener belongs to, for the other errors
+    :param permission_fix: what to do when a low port is refused (None: no special message)
+    :returns: the :class:`ServeError` to raise
+    """
+    if error.errno == errno.EADDRINUSE:
+        return ServeError(f'port {port} on {host} is already in use ({other}): stop it, or '
+                          f'pass {fix}')
+    if error.errno == errno.EACCES and permission_fix:
+        return ServeError(f'no permission to listen on port {port} of {host}: '
+                          f'{permission_fix}')
+    what = f' for {option}' if option else ''
+    return ServeError(f'cannot listen on {host}:{port}{what}: {error.strerror or error}')
+
+
 class LauncherRequestHandler(BaseHTTPRequestHandler):
     """Serve the Site of the server: files, the page and workspace.json."""
 
@@ -205,16 +226,10 @@ class LauncherServer(ThreadingHTTPServer):
         try:
             super().__init__((host, port), LauncherRequestHandler)
         except OSError as e:
-            if e.errno == errno.EADDRINUSE:
-                raise ServeError(
-                    f'port {port} on {host} is already in use (another colcon-wasm serve, or '
-                    'another '
-                    'server?): stop it, or pass --port N (--port 0 picks a free port)') from None
-            if e.errno == errno.EACCES:
-                raise ServeError(
-                    f'no permission to listen on port {port} of {host}: use a port above 1023, '
-                    'e.g. --port 8000') from None
-            raise ServeError(f'cannot listen on {host}:{port}: {e.strerror or e}') from None
+            raise bind_error(
+                e, host, port, other='another colcon-wasm serve, or another server?',
+                fix='--port N (--port 0 picks a free port)',
+                permission_fix='use a port above 1023, e.g. --port 8000') from None
 
     @property
     def url(self):

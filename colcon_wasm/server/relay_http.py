@@ -10,7 +10,6 @@ the ``--rosbridge [HOST:]PORT`` listener, with ``--rosbridge-token`` when
 one is set (``?token=`` or ``Authorization: Bearer``).
 """
 
-import errno
 import hmac
 from http.server import BaseHTTPRequestHandler
 from http.server import ThreadingHTTPServer
@@ -18,7 +17,7 @@ import socket
 from urllib.parse import parse_qs
 from urllib.parse import urlsplit
 
-from colcon_wasm.server.http import ServeError
+from colcon_wasm.server.http import bind_error
 from colcon_wasm.server.websocket import handshake_response
 
 RELAY_PATH = '/rosbridge'
@@ -114,14 +113,9 @@ class RelayServer(ThreadingHTTPServer):
         try:
             super().__init__((host, port), RelayRequestHandler)
         except OSError as e:
-            if e.errno == errno.EADDRINUSE:
-                raise ServeError(
-                    f'port {port} on {host} is already in use (another rosbridge server, or '
-                    'another '
-                    'server?): stop it, or pass --rosbridge HOST:PORT (port 0 picks a free '
-                    'port)') from None
-            raise ServeError(f'cannot listen on {host}:{port} for --rosbridge: '
-                             f'{e.strerror or e}') from None
+            raise bind_error(e, host, port, other='another rosbridge server, or another server?',
+                             fix='--rosbridge HOST:PORT (port 0 picks a free port)',
+                             option='--rosbridge') from None
 
     @property
     def url(self):
