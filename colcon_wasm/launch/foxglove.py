@@ -88,6 +88,9 @@ def schema_file(description, install_space):
     """
     Write the schema texts for a plan's Foxglove server, for the host's run.
 
+    The entry also gets ``shares``, each package's share folder, from which
+    the server answers ``fetchAsset`` of ``package://`` URIs.
+
     Without a ``foxglove`` entry in ``description`` this does nothing. The
     file is removed when the block ends.
     """
@@ -100,6 +103,10 @@ def schema_file(description, install_space):
         with os.fdopen(fd, 'w', encoding='utf-8') as f:
             json.dump(schema_texts(install_space), f)
         entry['schemas'] = path
+        # fetchAsset serves package:// files from these (as the ament index resolves them)
+        entry['shares'] = {name: str(package.share)
+                           for name, package in install_space.packages().items()
+                           if package.share.is_dir()}
         yield path
     finally:
         with contextlib.suppress(OSError):

@@ -13,9 +13,12 @@
  *   node foxglove_client.mjs clock URL     # publishes /clock; a second client gets the time
  *   node foxglove_client.mjs slow URL      # a client that stops reading while a big topic floods
  *   node foxglove_client.mjs relay URL     # serve --foxglove: a page's talker, listener, add_two_ints_server
+ *   node foxglove_client.mjs assets URL URI...  # fetchAsset of each URI (request ids 1, 2, ...)
  *
  * Prints one JSON line {ok, ...}; every wait is bounded.
  */
+
+import { createHash } from 'node:crypto';
 
 import rosmsg from '@foxglove/rosmsg';
 import serialization from '@foxglove/rosmsg2-serialization';
@@ -270,5 +273,29 @@ async function clock() {
   done({ ok: true, before: pub.info.capabilities, after: late.info.capabilities, times: times.slice(0, 3).map(String) });
 }
 
-({ demo, params, refused, slow, clock, relay }[mode] || (() => done({ ok: false, error: `unknown mode ${mode}` })))()
+/**
+ * FoxgloveClient.fetchAsset of each URI, request ids 1, 2, ...; then a
+ * fetchAsset without a requestId, which gets a status and no response.
+ */
+async function assets() {
+  const state = connect();
+  await until('serverInfo', () => state.info);
+  const responses = [];
+  for (const [i, uri] of rest.entries()) {
+    const requestId = i + 1;
+    const r = await reply(state.client, 'fetchAssetResponse', (m) => m.requestId === requestId,
+      () => state.client.fetchAsset(uri, requestId), uri);
+    responses.push({
+      uri, requestId: r.requestId, status: r.status, error: r.error,
+      // a digest: a long stdout line may be cut by process.exit
+      bytes: r.data ? r.data.byteLength : null,
+      sha256: r.data ? createHash('sha256').update(new Uint8Array(r.data.buffer, r.data.byteOffset, r.data.byteLength)).digest('hex') : null,
+    });
+  }
+  state.ws.send(JSON.stringify({ op: 'fetchAsset', uri: rest[0] }));
+  await until('a status for a fetchAsset without requestId', () => state.status.length);
+  done({ ok: true, capabilities: state.info.capabilities, responses, status: state.status });
+}
+
+({ demo, params, refused, slow, clock, relay, assets }[mode] || (() => done({ ok: false, error: `unknown mode ${mode}` })))()
   .catch((e) => done({ ok: false, error: e.stack }));

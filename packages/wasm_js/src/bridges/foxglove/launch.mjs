@@ -3,7 +3,7 @@
 
 /**
  * The Foxglove server of `colcon-wasm run|launch --foxglove` (`plan.foxglove`:
- * {host, port, queueMessages, schemas}), started with the rosbridge bridges
+ * {host, port, queueMessages, schemas, shares}), started with the rosbridge bridges
  * (../rosbridge/launch.mjs) on the launch's Runtime before its processes.
  *
  * @module bridges/foxglove/launch
@@ -11,7 +11,7 @@
 
 /**
  * Start the Foxglove server a plan entry asks for.
- * @param {{host: string, port: number, queueMessages: number, schemas: string}} spec
+ * @param {{host: string, port: number, queueMessages: number, schemas: string, shares: Object<string, string>}} spec
  * @param {import('../../runtime.mjs').Runtime} runtime
  * @param {import('../../cdr.mjs').TypeRegistry} registry
  * @param {{out: function(string): void, err: function(string): void}} io
@@ -26,7 +26,7 @@ export async function startFoxglove(spec, runtime, registry, { out, err }) {
     (level === 'error' || level === 'warning' ? err : out)(`[${tag}] [foxglove]: ${text}`);
   };
   const server = await FoxgloveServer.start({
-    runtime, registry, schemas: spec.schemas, host: spec.host, port: spec.port,
+    runtime, registry, schemas: spec.schemas, shares: spec.shares, host: spec.host, port: spec.port,
     queueMessages: spec.queueMessages || 10, log,
   });
   log('info', `foxglove server listening on ${server.url}`);

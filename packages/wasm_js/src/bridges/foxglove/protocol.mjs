@@ -15,7 +15,7 @@
 export const SUBPROTOCOLS = Object.freeze(['foxglove.sdk.v1', 'foxglove.websocket.v1']);
 
 /** Opcodes of the server's binary messages. */
-export const ServerBinary = Object.freeze({ MESSAGE_DATA: 1, TIME: 2, SERVICE_CALL_RESPONSE: 3 });
+export const ServerBinary = Object.freeze({ MESSAGE_DATA: 1, TIME: 2, SERVICE_CALL_RESPONSE: 3, FETCH_ASSET_RESPONSE: 4 });
 
 /** Opcodes of the client's binary messages. */
 export const ClientBinary = Object.freeze({ MESSAGE_DATA: 1, SERVICE_CALL_REQUEST: 2 });
@@ -26,7 +26,7 @@ export const StatusLevel = Object.freeze({ INFO: 0, WARNING: 1, ERROR: 2 });
 /** Capabilities a server may declare in its serverInfo. */
 export const Capability = Object.freeze({
   clientPublish: 'clientPublish', parameters: 'parameters', parametersSubscribe: 'parametersSubscribe',
-  services: 'services', connectionGraph: 'connectionGraph', time: 'time',
+  services: 'services', connectionGraph: 'connectionGraph', time: 'time', assets: 'assets',
 });
 
 const enc = new TextEncoder();
@@ -70,6 +70,26 @@ export function serviceCallResponse(serviceId, callId, encoding, data) {
   view.setUint32(9, name.length, true);
   out.set(name, 13);
   out.set(data, 13 + name.length);
+  return out;
+}
+
+/**
+ * A FETCH_ASSET_RESPONSE message: the file's bytes, or (with `error`) status 1 and the error text.
+ * @param {number} requestId
+ * @param {?string} error
+ * @param {Uint8Array} [data]
+ */
+export function fetchAssetResponse(requestId, error, data = new Uint8Array(0)) {
+  const text = enc.encode(error || '');
+  const body = error ? new Uint8Array(0) : data;
+  const out = new Uint8Array(10 + text.length + body.byteLength);
+  const view = new DataView(out.buffer);
+  view.setUint8(0, ServerBinary.FETCH_ASSET_RESPONSE);
+  view.setUint32(1, requestId, true);
+  view.setUint8(5, error ? 1 : 0);
+  view.setUint32(6, text.length, true);
+  out.set(text, 10);
+  out.set(body, 10 + text.length);
   return out;
 }
 

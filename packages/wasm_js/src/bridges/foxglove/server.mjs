@@ -7,8 +7,9 @@
  * Lichtblick see every topic as a channel (`cdr`, `ros2msg`, the complete
  * definition), get the CDR bytes of the bus as they are, publish
  * (cdr or json), call services, get, set and watch the nodes' parameters,
- * follow the connection graph, and get the time of `/clock` when it is
- * published. The WebSocket, the bus link, the JSON to CDR converter and
+ * follow the connection graph, get the time of `/clock` when it is
+ * published, and fetch `package://` assets (meshes of a URDF) from the
+ * install space. The WebSocket, the bus link, the JSON to CDR converter and
  * the parameter client are the rosbridge bridge's (../rosbridge/).
  *
  * @module bridges/foxglove/server
@@ -20,6 +21,7 @@ import { BusLink } from '../rosbridge/bus_link.mjs';
 import { Converter } from '../rosbridge/convert.mjs';
 import { closeAll, listen } from '../common/listen.mjs';
 import { acceptWebSocket } from '../rosbridge/ws_node.mjs';
+import { Assets } from './assets.mjs';
 import { Catalog, connectionGraph, connectionGraphUpdate, loadSchemas } from './catalog.mjs';
 import { Parameters } from './parameters.mjs';
 import { Capability, StatusLevel, SUBPROTOCOLS, timeMessage } from './protocol.mjs';
@@ -41,6 +43,7 @@ export class FoxgloveServer {
    * @param {import('../../runtime.mjs').Runtime} options.runtime
    * @param {import('../../cdr.mjs').TypeRegistry} options.registry the build's type descriptions
    * @param {string} [options.schemas] the JSON file of schema texts (colcon_wasm/launch/foxglove.py)
+   * @param {Object<string, string>} [options.shares] package name -> share folder, for fetchAsset
    * @param {string} [options.host='127.0.0.1']
    * @param {number} [options.port=8765] 0 picks a free port
    * @param {number} [options.queueMessages=10] per subscription, before the oldest is dropped
@@ -54,7 +57,7 @@ export class FoxgloveServer {
     return server;
   }
 
-  constructor({ runtime, registry, schemas = null, host = '127.0.0.1', port = 8765, queueMessages = 10, log = null }) {
+  constructor({ runtime, registry, schemas = null, shares = null, host = '127.0.0.1', port = 8765, queueMessages = 10, log = null }) {
     this.runtime = runtime;
     this.registry = registry;
     this.converter = new Converter(registry);
@@ -67,6 +70,7 @@ export class FoxgloveServer {
     this.sessionId = String(Date.now());
     this._nextId = 1;
     this.catalog = new Catalog(loadSchemas(schemas), (text) => this.log('warning', text));
+    this.assets = new Assets(shares);
     this.link = null;
     this.parameters = null;
     this._clock = null;
@@ -100,6 +104,7 @@ export class FoxgloveServer {
     const caps = [Capability.clientPublish, Capability.services, Capability.connectionGraph];
     if (this.parameters.available) caps.push(Capability.parameters, Capability.parametersSubscribe);
     if (this._clock) caps.push(Capability.time);
+    if (this.assets.available) caps.push(Capability.assets);
     return caps;
   }
 

@@ -12,7 +12,7 @@
 
 import { normalizeTypeName } from '../../cdr.mjs';
 import { publisherQos } from '../rosbridge/bus_link.mjs';
-import { ClientBinary, messageData, parseClientBinary, serviceCallResponse, StatusLevel } from './protocol.mjs';
+import { ClientBinary, fetchAssetResponse, messageData, parseClientBinary, serviceCallResponse, StatusLevel } from './protocol.mjs';
 import { SendQueues } from './send_queue.mjs';
 
 const dec = new TextDecoder();
@@ -108,7 +108,7 @@ export class Session {
     if (typeof handler !== 'function') {
       this.status(StatusLevel.ERROR, `unknown op '${msg.op}': this server handles subscribe, unsubscribe, advertise, `
         + 'unadvertise, getParameters, setParameters, subscribeParameterUpdates, unsubscribeParameterUpdates, '
-        + 'subscribeConnectionGraph and unsubscribeConnectionGraph');
+        + 'subscribeConnectionGraph, unsubscribeConnectionGraph and fetchAsset');
       return;
     }
     Promise.resolve().then(() => handler.call(this, msg)).catch((e) => {
@@ -318,8 +318,26 @@ export class Session {
     this.graphSubscribed = false;
   }
 
-  op_fetchAsset(msg) {
-    throw new RequestError(`fetchAsset ${msg.uri}: this server does not serve assets (no 'assets' capability)`);
+  // ------------------------------------------------------------- assets
+
+  /** fetchAsset: the file of a package:// URI, or an error response with the same requestId. */
+  async op_fetchAsset(msg) {
+    if (!Number.isInteger(msg.requestId) || msg.requestId < 0) {
+      throw new RequestError("fetchAsset needs an integer 'requestId' (the response carries it)");
+    }
+    const assets = this.server.assets;
+    let data = null;
+    let error = null;
+    if (!assets.available) {
+      error = `fetchAsset ${msg.uri}: this server has no install space to serve assets from (no 'assets' capability)`;
+    } else {
+      try {
+        data = await assets.fetch(msg.uri);
+      } catch (e) {
+        error = e.message;
+      }
+    }
+    if (!this.closed) this.conn.send(fetchAssetResponse(msg.requestId, error, data || undefined));
   }
 
   /** End the session: subscriptions, publishers. */
