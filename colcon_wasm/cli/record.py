@@ -12,7 +12,7 @@ from colcon_wasm.cli import CliExtensionPoint
 from colcon_wasm.launch.install_space import InstallSpace
 from colcon_wasm.record import BagError
 from colcon_wasm.record.bag_writer import BagWriter
-from colcon_wasm.record.bag_writer import COMPRESSIONS
+from colcon_wasm.record.mcap_file import COMPRESSIONS
 from colcon_wasm.record.remote import RemoteRecorder
 from colcon_wasm.ros2msg import SchemaError
 

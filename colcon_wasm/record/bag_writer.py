@@ -2,7 +2,7 @@
 # Licensed under the Apache License, Version 2.0
 
 """
-Write a bag: rosbag2's MCAP layout, with Foxglove's ``mcap`` writer.
+Write a bag: rosbag2's MCAP layout (records encoded by Foxglove's ``mcap``).
 
 As Humble's rosbag2_storage_mcap writes it: profile ``ros2``; one schema per
 type (encoding ``ros2msg``, the complete definition of
@@ -19,6 +19,10 @@ is readable by stream readers. When the disk is full (or the file size
 limit is reached) the partly written record is cut off and a footer is
 written when there is room for it, so the file ends after its last whole
 chunk.
+
+Chunks come whole from the Node host (``write_chunk``, built in its tools
+worker) or are built here a message at a time (``write``); either way
+:class:`colcon_wasm.record.mcap_file.McapFile` puts them in the file.
 """
 
 import errno
@@ -27,41 +31,42 @@ import time
 
 from colcon_wasm import __version__
 from colcon_wasm.record import BagError
+from colcon_wasm.record.mcap_file import ChunkBuffer
+from colcon_wasm.record.mcap_file import drop_channels
+from colcon_wasm.record.mcap_file import McapFile
 from colcon_wasm.record.qos import to_rosbag2
 from mcap.data_stream import RecordBuilder
 from mcap.records import DataEnd
 from mcap.records import Footer
-from mcap.writer import CompressionType
 from mcap.writer import MCAP0_MAGIC
-from mcap.writer import Writer
 import yaml
-
-COMPRESSIONS = {'none': CompressionType.NONE, 'zstd': CompressionType.ZSTD,
-                'lz4': CompressionType.LZ4}
 DEFAULT_CHUNK_SIZE = 1024 * 1024
 DEFAULT_FLUSH_INTERVAL = 1.0
 _FULL = (errno.ENOSPC, errno.EFBIG, errno.EDQUOT)
 
 
 class _FileSink:
-    """An unbuffered file the mcap writer writes to; it knows the last whole write."""
+    """An unbuffered file the bag is written to; it knows the last whole write."""
 
     def __init__(self, path):
         self.path = path
         self.fd = os.open(str(path), os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
         self.position = 0
-        # the end of the last write that reached the file whole (each write of
-        # the mcap writer is whole records)
+        # the end of the last write that reached the file whole (each write
+        # is whole records)
         self.good = 0
 
-    def write(self, data):
-        view = memoryview(data)
-        while view:
-            n = os.write(self.fd, view)
-            self.position += n
-            view = view[n:]
+    def write(self, *parts):
+        total = 0
+        for data in parts:
+            view = memoryview(data).cast('B')
+            while view:
+                n = os.write(self.fd, view)
+                self.position += n
+                total += n
+                view = view[n:]
         self.good = self.position
-        return len(data)
+        return total
 
     def tell(self):
         return self.position
@@ -82,8 +87,9 @@ class BagWriter:
     """
     One MCAP file being recorded.
 
-    ``add_topic`` then ``write``; ``close`` writes the summary. Once the disk
-    is full, ``failed`` holds the message and later writes are ignored.
+    ``add_topic`` then ``write`` (or ``write_chunk``); ``close`` writes the
+    summary. Once the disk is full, ``failed`` holds the message and later
+    writes are ignored.
     """
 
     def __init__(self, path, schemas, *, compression='none', chunk_size=DEFAULT_CHUNK_SIZE,
@@ -97,13 +103,12 @@ class BagWriter:
         """
         self.path = path
         self._schemas = schemas
+        self._chunk_size = chunk_size
         self._flush_interval = flush_interval
         try:
             self._sink = _FileSink(path)
         except OSError as e:
             raise BagError(f"cannot create the bag '{path}': {e.strerror}") from None
-        self._writer = Writer(self._sink, chunk_size=chunk_size,
-                              compression=COMPRESSIONS[compression])
         self._compression = compression
         self._schema_ids = {}
         self._topics = {}
@@ -111,32 +116,43 @@ class BagWriter:
         self.messages = 0
         self._first = None
         self._last = None
+        self._chunk = ChunkBuffer()
         self._chunk_opened = None
-        self._guard(lambda: self._writer.start(
-            profile='ros2', library=f'colcon-wasm {__version__}'))
+        self._file = self._guard(lambda: McapFile(
+            self._sink, compression=compression, profile='ros2',
+            library=f'colcon-wasm {__version__}'))
 
-    def add_topic(self, topic, type_name, qos_profiles):
+    def add_topic(self, topic, type_name, qos_profiles, channel=None):
         """
         Add a channel for a topic (and the schema of its type, once).
 
         :param qos_profiles: the offered QoS of its publishers (JS form)
-        :returns: the channel id, or None for a type without a schema in the
-          install (the reason in ``skipped[topic]``)
+        :param channel: the channel id to give it (the ids of chunks built
+          elsewhere); by default the next free one
+        :returns: the channel id, or None when the file failed
         :raises colcon_wasm.ros2msg.SchemaError: for a type the install does not describe
         """
         if self.failed:
             return None
         if type_name not in self._schema_ids:
             text = self._schemas.full_text(type_name)
-            self._schema_ids[type_name] = self._guard(lambda: self._writer.register_schema(
-                name=type_name, encoding='ros2msg', data=text.encode('utf-8')))
+            schema_id = len(self._schema_ids) + 1
+            if self._guard(lambda: self._file.add_schema(
+                    schema_id, type_name, 'ros2msg', text.encode('utf-8')), True) is None:
+                return None
+            self._schema_ids[type_name] = schema_id
+        if channel is None:
+            channel = max(self._topics, default=0) + 1
+        if channel in self._topics:
+            raise BagError(f"channel {channel} of '{topic}' is taken by "
+                           f"'{self._topics[channel]['name']}'")
         qos_text = to_rosbag2(qos_profiles)
-        channel = self._guard(lambda: self._writer.register_channel(
-            topic=topic, message_encoding='cdr', schema_id=self._schema_ids[type_name],
-            metadata={'offered_qos_profiles': qos_text}))
-        if channel is not None:
-            self._topics[channel] = {'name': topic, 'type': type_name, 'qos': qos_text,
-                                     'count': 0}
+        if self._guard(lambda: self._file.add_channel(
+                channel, topic, 'cdr', self._schema_ids[type_name],
+                {'offered_qos_profiles': qos_text}), True) is None:
+            return None
+        self._topics[channel] = {'name': topic, 'type': type_name, 'qos': qos_text,
+                                 'count': 0}
         return channel
 
     def write(self, channel, log_time, publish_time, data, sequence=0):
@@ -146,34 +162,61 @@ class BagWriter:
         now = time.monotonic()
         if self._chunk_opened is None:
             self._chunk_opened = now
-        ok = self._guard(lambda: self._writer.add_message(
-            channel_id=channel, log_time=log_time, data=data, publish_time=publish_time,
-            sequence=sequence), True)
-        if not ok:
-            return
-        self.messages += 1
-        self._topics[channel]['count'] += 1
-        self._first = log_time if self._first is None else min(self._first, log_time)
-        self._last = log_time if self._last is None else max(self._last, log_time)
-        if now - self._chunk_opened >= self._flush_interval:
+        self._chunk.add(channel, log_time, publish_time, data, sequence)
+        self._count(channel, 1, log_time, log_time)
+        if (len(self._chunk.records) >= self._chunk_size
+                or now - self._chunk_opened >= self._flush_interval):
             self.flush()
+
+    def write_chunk(self, records, start, end, indexes, channels):
+        """
+        Add a chunk built elsewhere (the Node host's tools worker).
+
+        Its messages on channels this bag has no topic for (types the
+        install does not describe) are left out.
+
+        :param records: the chunk's Message records
+        :param indexes: its MessageIndex records
+        :param channels: ``[(channel id, message count, index record length), ...]``
+        """
+        if self.failed:
+            return
+        self.flush()
+        unknown = {c for c, _, _ in channels if c not in self._topics}
+        if unknown:
+            kept = drop_channels(records, unknown)
+            for channel, entries in kept.index.items():
+                self._count(channel, len(entries), kept.start, kept.end)
+            self._guard(lambda: self._file.add_buffer(kept))
+            return
+        if self._guard(lambda: self._file.add_chunk(records, start, end, indexes,
+                                                    channels), True) is None:
+            return
+        for channel, count, _ in channels:
+            self._count(channel, count, start, end)
+
+    def _count(self, channel, count, first, last):
+        self.messages += count
+        self._topics[channel]['count'] += count
+        self._first = first if self._first is None else min(self._first, first)
+        self._last = last if self._last is None else max(self._last, last)
 
     def flush(self):
         """Close the open chunk (it goes to the file)."""
-        if self.failed:
-            return
         self._chunk_opened = None
-        self._guard(self._writer.flush)
+        if self.failed or not self._chunk.messages:
+            return
+        chunk, self._chunk = self._chunk, ChunkBuffer()
+        self._guard(lambda: self._file.add_buffer(chunk))
 
     def close(self):
         """Write the rosbag2 metadata and the summary, and close the file."""
+        self.flush()
         if not self.failed:
-            self._guard(self._writer.flush)
-        if not self.failed:
-            self._guard(lambda: self._writer.add_metadata(
+            self._guard(lambda: self._file.add_metadata(
                 'rosbag2', {'serialized_metadata': self.metadata_yaml()}))
         if not self.failed:
-            self._guard(self._writer.finish)
+            self._guard(self._file.finish)
         self._sink.close()
 
     def metadata_yaml(self):

@@ -12,8 +12,11 @@ Recording (host to launcher):
 
 - ``CHANNEL``: JSON ``{"id", "topic", "type", "qos": [profile, ...]}``, the
   offered QoS of the topic's publishers in the JS form of qos.mjs;
-- ``MESSAGE``: ``u32 channel, f64 log_ms, f64 publish_ms`` then the CDR
-  bytes (milliseconds since the epoch, sub-millisecond fraction kept);
+- ``CHUNK``: ``u32 n``, ``n`` bytes of JSON ``{"records": R, "start",
+  "end" (ns, as text), "messages", "channels": [[id, count, index length],
+  ...]}``, then ``R`` bytes of the chunk's MCAP Message records, then its
+  MessageIndex records (built by the host's tools worker,
+  tools_process/chunk_recording.mjs);
 - ``NOTE``: JSON ``{"dropped": N}`` when the host dropped messages.
 
 Playing (launcher to host):
@@ -32,9 +35,11 @@ CHANNEL = 1
 MESSAGE = 2
 NOTE = 3
 END = 4
+CHUNK = 5
 
 _HEAD = struct.Struct('<IB')
 _RECORDED = struct.Struct('<Idd')
+_META_LENGTH = struct.Struct('<I')
 _PLAYED = struct.Struct('<IIId')
 
 
@@ -53,13 +58,31 @@ def encode_played(channel, log_time_ns, offset_ns, data):
 
 def decode_recorded(body):
     """
-    Decode the body of a recorded MESSAGE frame.
+    Decode a recorded message (the page's frames to serve's /bag socket).
+
+    Its body is ``u32 channel, f64 log_ms, f64 publish_ms`` then the CDR
+    bytes (milliseconds since the epoch, sub-millisecond fraction kept).
 
     :returns: ``(channel, log_time_ns, publish_time_ns, data)``
     """
     channel, log_ms, publish_ms = _RECORDED.unpack_from(body)
     data = memoryview(body)[_RECORDED.size:]  # no copy: an image is a megabyte
     return channel, round(log_ms * 1e6), round(publish_ms * 1e6), data
+
+
+def decode_chunk(body):
+    """
+    Decode the body of a recorded CHUNK frame (no copy of its records).
+
+    :returns: ``(records, start_ns, end_ns, indexes, channels)`` as
+      :meth:`colcon_wasm.record.bag_writer.BagWriter.write_chunk` takes them
+    """
+    view = memoryview(body)
+    (n,) = _META_LENGTH.unpack_from(view)
+    meta = json.loads(bytes(view[4:4 + n]))
+    at = 4 + n + meta['records']
+    channels = [tuple(c) for c in meta['channels']]
+    return view[4 + n:at], int(meta['start']), int(meta['end']), view[at:], channels
 
 
 def read_frames(stream):

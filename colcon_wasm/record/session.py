@@ -23,7 +23,7 @@ from colcon_wasm.record.bag_reader import bag_files
 from colcon_wasm.record.bag_reader import read_messages
 from colcon_wasm.record.bag_reader import unplayable
 from colcon_wasm.record.bag_writer import BagWriter
-from colcon_wasm.record.bag_writer import COMPRESSIONS
+from colcon_wasm.record.mcap_file import COMPRESSIONS
 from colcon_wasm.record.qos import player_qos
 from colcon_wasm.ros2msg import SchemaError
 
@@ -105,6 +105,23 @@ def bag_plan(args, *, play=None, stop_after_play=False):
     return plan
 
 
+_PIPE_BYTES = 1024 * 1024
+
+
+def _widen_pipe(fd):
+    """
+    Give the recording pipe room for a whole chunk (Linux; else left as it is).
+
+    A chunk of images is a megabyte: with the default 64 KiB the host and
+    the launcher would wake each other 16 times per chunk.
+    """
+    try:
+        import fcntl
+        fcntl.fcntl(fd, fcntl.F_SETPIPE_SZ, _PIPE_BYTES)
+    except (ImportError, AttributeError, OSError):
+        pass
+
+
 class BagSession:
     """The launcher's side of recording and replay for one run of the host."""
 
@@ -129,6 +146,7 @@ class BagSession:
             except (BagError, SchemaError) as e:
                 raise LaunchError(str(e)) from None
             read_end, write_end = os.pipe()
+            _widen_pipe(read_end)
             self.fds.append(write_end)
             self._close_after_start.append(write_end)
             self.host_plan['record'] = {'fd': write_end, 'topics': spec['topics']}
@@ -171,18 +189,16 @@ class BagSession:
                 if kind == frames.CHANNEL:
                     c = json.loads(body)
                     try:
-                        channels[c['id']] = writer.add_topic(c['topic'], c['type'], c['qos'])
+                        channels[c['id']] = writer.add_topic(c['topic'], c['type'], c['qos'],
+                                                             channel=c['id'])
                     except SchemaError as e:
                         channels[c['id']] = None
                         self._say('WARNING', f"not recording topic '{c['topic']}': {e}")
                         continue
                     if channels[c['id']] is not None:
                         self._say('INFO', f"recording topic '{c['topic']}' ({c['type']})")
-                elif kind == frames.MESSAGE:
-                    channel, log_time, publish_time, data = frames.decode_recorded(body)
-                    target = channels.get(channel)
-                    if target is not None:
-                        writer.write(target, log_time, publish_time, data)
+                elif kind == frames.CHUNK:
+                    writer.write_chunk(*frames.decode_chunk(body))
                 elif kind == frames.NOTE:
                     dropped = json.loads(body).get('dropped', dropped)
                 if writer.failed and not self.failed:

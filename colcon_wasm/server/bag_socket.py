@@ -44,8 +44,8 @@ from colcon_core.logging import colcon_logger
 from colcon_wasm.record import BagError
 from colcon_wasm.record.bag_reader import unplayable
 from colcon_wasm.record.bag_writer import BagWriter
-from colcon_wasm.record.bag_writer import COMPRESSIONS
 from colcon_wasm.record.frames import decode_recorded
+from colcon_wasm.record.mcap_file import COMPRESSIONS
 from colcon_wasm.record.paced_player import BagSpan
 from colcon_wasm.record.paced_player import PacedPlayer
 from colcon_wasm.record.qos import player_qos

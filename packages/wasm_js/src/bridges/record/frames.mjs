@@ -9,7 +9,7 @@
  * @module bridges/record/frames
  */
 
-export const Kind = Object.freeze({ CHANNEL: 1, MESSAGE: 2, NOTE: 3, END: 4 });
+export const Kind = Object.freeze({ CHANNEL: 1, MESSAGE: 2, NOTE: 3, END: 4, CHUNK: 5 });
 
 const encoder = new TextEncoder();
 const decoder = new TextDecoder();
@@ -26,30 +26,23 @@ export function jsonFrame(kind, value) {
 }
 
 /**
- * The head of a recorded message's frame (channel, log and publish times in ms
- * since the epoch); the CDR bytes follow it.
+ * The head of a recorded chunk's frame: the JSON of its times, message count
+ * and per-channel message indexes, then (`bodyBytes` of them) the chunk's
+ * records and its MessageIndex records follow.
+ * @param {{length: number, start: bigint, end: bigint, messages: number, channels: number[][]}} chunk
+ * @param {number} bodyBytes records and indexes, in bytes
  */
-export function messageHead(channel, logMs, publishMs, length) {
-  const out = new Uint8Array(25);
+export function chunkHead(chunk, bodyBytes) {
+  const meta = encoder.encode(JSON.stringify({
+    records: chunk.length, start: String(chunk.start), end: String(chunk.end),
+    messages: chunk.messages, channels: chunk.channels,
+  }));
+  const out = new Uint8Array(9 + meta.length);
   const view = new DataView(out.buffer);
-  view.setUint32(0, 1 + 20 + length, true);
-  out[4] = Kind.MESSAGE;
-  view.setUint32(5, channel, true);
-  view.setFloat64(9, logMs, true);
-  view.setFloat64(17, publishMs, true);
-  return out;
-}
-
-/** A recorded message's whole frame. */
-export function messageFrame(channel, logMs, publishMs, data) {
-  const out = new Uint8Array(5 + 20 + data.length);
-  const view = new DataView(out.buffer);
-  view.setUint32(0, 1 + 20 + data.length, true);
-  out[4] = Kind.MESSAGE;
-  view.setUint32(5, channel, true);
-  view.setFloat64(9, logMs, true);
-  view.setFloat64(17, publishMs, true);
-  out.set(data, 25);
+  view.setUint32(0, 1 + 4 + meta.length + bodyBytes, true);
+  out[4] = Kind.CHUNK;
+  view.setUint32(5, meta.length, true);
+  out.set(meta, 9);
   return out;
 }
 

@@ -5,20 +5,26 @@
  * The recording side of `--record` in the Node.js launcher: one tools subscription
  * per topic with a publisher (or per `--record-topic`), subscribed as soon
  * as the topic shows up in the graph, with the QoS that matches its
- * publishers (as `ros2 bag record` adapts). Every message goes, as the
- * bus delivered it (raw CDR, no decode), to the launcher's pipe
- * (./frames.mjs); the launcher writes the MCAP file.
+ * publishers (as `ros2 bag record` adapts). The tools worker copies every
+ * message, as the bus delivered it (raw CDR, no decode), into the records of
+ * an MCAP chunk (tools_process/chunk_recording.mjs); each closed chunk goes
+ * to the launcher's pipe (./frames.mjs) in one write, and the launcher puts
+ * it into the MCAP file.
  *
  * @module bridges/record/recorder
  */
 
 import { subscriptionQos } from '../../page/graph.mjs';
-import { jsonFrame, Kind, messageHead } from './frames.mjs';
+import { chunkHead, jsonFrame, Kind } from './frames.mjs';
 
 /** Bytes waiting for the pipe beyond which messages are dropped (and counted). */
 const MAX_QUEUED_BYTES = 256 * 1024 * 1024;
 /** History of the recorder's subscriptions: bursts between two wake-ups are kept. */
 const DEPTH = 1000;
+/** A chunk is closed at this size of its records (as the launcher's own chunks), */
+const CHUNK_BYTES = 1024 * 1024;
+/** or this long after its first message (a crash loses at most that much). */
+const FLUSH_MS = 1000;
 
 export class Recorder {
   /**
@@ -39,8 +45,8 @@ export class Recorder {
     /** topics whose subscription is in place */
     this.subscribed = new Set();
     this.subscriptions = [];
+    this.recording = null;
     this.dropped = 0;
-    this.lastBatch = 0;
     this.closed = false;
     this.broken = false;
     sink.on('error', (e) => {
@@ -51,6 +57,8 @@ export class Recorder {
 
   async start() {
     this.node = await this.tools.createNode('rosbag2_recorder', { namespace: '/' });
+    this.recording = await this.tools.startRecording({ chunkBytes: CHUNK_BYTES, flushMs: FLUSH_MS },
+      (chunk) => this._chunk(chunk));
     this.runtime.onGraphChange(() => this._scan());
     this._scan();
   }
@@ -67,14 +75,10 @@ export class Recorder {
       this.channels.set(t.name, id);
       this._send(jsonFrame(Kind.CHANNEL, { id, topic: t.name, type, qos: offered }));
       const qos = subscriptionQos(offered, DEPTH);
-      this.subscriptions.push(this.tools.subscribe({ topic: t.name, type, qos, node: this.node }, (batch) => {
-        this.lastBatch = Date.now();
-        // one write per batch (a write to the pipe is a system call on libuv's thread pool),
-        // large payloads not copied: the head and the bytes go out in one writev
-        const parts = [];
-        for (const m of batch) parts.push(messageHead(id, m.info.receivedTime, m.info.sourceTime, m.data.length), m.data);
-        this._sendParts(parts, batch.length);
-      }).then((s) => { this.subscribed.add(t.name); return s; }).catch((e) => {
+      this.subscriptions.push(this.recording.add({ topic: t.name, type, qos, node: this.node }, id).then((ep) => {
+        this.subscribed.add(t.name);
+        return ep;
+      }).catch((e) => {
         this.log('error', `cannot record '${t.name}': ${e.message}`);
         return null;
       }));
@@ -96,15 +100,23 @@ export class Recorder {
     this.sink.write(frame);
   }
 
-  /** Write message frames (heads and payloads) in one go; past the bound they are dropped. */
-  _sendParts(parts, messages) {
-    if (this.broken) return;
-    if (this.sink.writableLength > MAX_QUEUED_BYTES) {
-      this.dropped += messages;
+  /**
+   * Write a chunk of the tools worker to the pipe in one go (its head, the
+   * records, the message indexes; nothing copied); past the bound it is
+   * dropped and its messages counted. Its buffer goes back to the worker once written.
+   */
+  _chunk(chunk) {
+    const records = new Uint8Array(chunk.records, 0, chunk.length);
+    const indexes = new Uint8Array(chunk.indexes);
+    if (this.broken || this.sink.writableLength > MAX_QUEUED_BYTES) {
+      if (!this.broken) this.dropped += chunk.messages;
+      this.recording.recycle(chunk.records);
       return;
     }
     this.sink.cork();
-    for (const p of parts) this.sink.write(p);
+    this.sink.write(chunkHead(chunk, records.length + indexes.length));
+    this.sink.write(records);
+    this.sink.write(indexes, () => this.recording.recycle(chunk.records));
     process.nextTick(() => this.sink.uncork());
   }
 
@@ -112,13 +124,10 @@ export class Recorder {
   async close() {
     if (this.closed) return;
     this.closed = true;
-    // what is on its way from the tools worker is recorded too: wait for a quiet 100 ms (3 s at most)
-    const until = Date.now() + 3000;
-    while (this.lastBatch && Date.now() - this.lastBatch < 100 && Date.now() < until) {
-      await new Promise((resolve) => setTimeout(resolve, 20));
-    }
-    const subscriptions = await Promise.all(this.subscriptions);
-    await Promise.all(subscriptions.filter(Boolean).map((s) => s.close().catch(() => {})));
+    // the subscriptions in the making first, then what is waiting on the bus goes into
+    // the last chunk, which reaches this side before close() returns
+    await Promise.all(this.subscriptions);
+    if (this.recording) await this.recording.close().catch((e) => this.log('error', `closing the recording: ${e.message}`));
     if (this.dropped) {
       this.log('warning', `${this.dropped} messages were dropped: the launcher did not keep up with writing them`);
       this._send(jsonFrame(Kind.NOTE, { dropped: this.dropped }));
