@@ -150,7 +150,8 @@ class BagSession:
             self.fds.append(write_end)
             self._close_after_start.append(write_end)
             self.host_plan['record'] = {'fd': write_end, 'topics': spec['topics']}
-            self._thread(self._record, writer, os.fdopen(read_end, 'rb'))
+            # unbuffered: chunks are read straight into the frame buffer
+            self._thread(self._record, writer, os.fdopen(read_end, 'rb', buffering=0))
         if 'play' in self.plan:
             spec = self.plan['play']
             read_end, write_end = os.pipe()
@@ -185,9 +186,10 @@ class BagSession:
         channels = {}
         dropped = 0
         try:
-            for kind, body in frames.read_frames(stream):
+            # the chunk is written before the next frame is read: one buffer for all
+            for kind, body in frames.read_frames(stream, reuse=True):
                 if kind == frames.CHANNEL:
-                    c = json.loads(body)
+                    c = json.loads(bytes(body))
                     try:
                         channels[c['id']] = writer.add_topic(c['topic'], c['type'], c['qos'],
                                                              channel=c['id'])
@@ -200,7 +202,7 @@ class BagSession:
                 elif kind == frames.CHUNK:
                     writer.write_chunk(*frames.decode_chunk(body))
                 elif kind == frames.NOTE:
-                    dropped = json.loads(body).get('dropped', dropped)
+                    dropped = json.loads(bytes(body)).get('dropped', dropped)
                 if writer.failed and not self.failed:
                     self.failed = True
                     self._say('ERROR', writer.failed)
