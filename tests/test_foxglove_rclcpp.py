@@ -14,6 +14,7 @@ from pathlib import Path
 import re
 import sys
 import textwrap
+import time
 
 import pytest
 
@@ -67,3 +68,24 @@ def test_foxglove_time_from_clock(server):
     times = [int(t) for t in r['times']]
     assert all(t % 1000000000 == 500 and t // 1000000000 > 1000 for t in times), times
     assert times == sorted(times)
+
+
+def test_serve_foxglove_time_from_clock(tmp_path):
+    """Serve --foxglove: /clock from a relay client or a Foxglove client gives the time."""
+    from urllib.parse import urlsplit
+    from served_page import ServedPage
+    install = rclcpp_build().install
+    with ServedPage(install, args=['--foxglove', '127.0.0.1:0']) as served:
+        relay = f'ws://{urlsplit(served.url).netloc}/rosbridge'
+        # published by a rosbridge client of serve's relay (as a page's node would), then
+        # by a Foxglove client (clientPublish)
+        results = [node_script('foxglove_client.mjs', 'clock', served.foxglove_url, relay)]
+        # the relay's graph forgets the first publisher's /clock (catalog: once a second)
+        time.sleep(2.5)
+        results.append(node_script('foxglove_client.mjs', 'clock', served.foxglove_url))
+    for r in results:
+        assert 'time' not in r['before'], r
+        assert 'time' in r['after'], r
+        times = [int(t) for t in r['times']]
+        assert all(t % 1000000000 == 500 and t // 1000000000 > 1000 for t in times), times
+        assert times == sorted(times)

@@ -17,11 +17,15 @@ Studio, Lichtblick or ``@foxglove/ws-protocol`` clients:
 * ``clientPublish`` and service calls in ``json`` (the relay routes JSON;
   this server has no CDR codec of its own, so it does not offer ``cdr``);
 * one send queue per subscription (``queue_messages`` newest kept, drops
-  counted), sent round robin, so a flood on one topic never starves another.
+  counted), sent round robin, so a flood on one topic never starves another;
+* ``time``: once ``/clock`` (rosgraph_msgs/msg/Clock) is in the graph, this
+  server follows it (in JSON, whoever publishes it) and sends every client
+  its time; clients that connect after it appeared see the capability.
 
 Parameters and the connection graph are not offered here: the pages do
-not bridge their nodes' parameter services to the relay (``run``/``launch
---foxglove`` has both). See docs/bridge.md.
+not bridge their nodes' parameter services to the relay, and the relay
+knows its peers (pages), not which of a page's nodes holds which endpoint
+(``run``/``launch --foxglove`` has both). See docs/bridge.md.
 """
 
 import collections
@@ -30,6 +34,7 @@ from http.server import ThreadingHTTPServer
 import itertools
 import json
 import socket
+import struct
 import threading
 import time
 
@@ -48,6 +53,8 @@ logger = colcon_logger.getChild(__name__)
 CATALOG_INTERVAL = 1.0
 SEND_HIGH_WATER = 8 * 1024 * 1024
 CALL_TIMEOUT = 10.0
+CLOCK_TOPIC = '/clock'
+CLOCK_TYPE = 'rosgraph_msgs/msg/Clock'
 
 
 class RelayLink:
@@ -99,6 +106,7 @@ class FoxgloveRelayServer(ThreadingHTTPServer):
         self._ids = itertools.count(1)
         self._channel_ids = itertools.count(1)
         self._service_ids = itertools.count(1)
+        self.clock = False      # following /clock: the time capability
         self._stop = threading.Event()
         if ':' in host:
             self.address_family = socket.AF_INET6
@@ -141,6 +149,8 @@ class FoxgloveRelayServer(ThreadingHTTPServer):
     def _from_relay(self, msg):
         op = msg.get('op')
         if op == 'publish':
+            if msg.get('topic') == CLOCK_TOPIC and self.clock:
+                self.tick(msg.get('msg'))
             self._deliver(msg)
         elif op == 'service_response':
             rid = str(msg.get('id', ''))
@@ -185,6 +195,7 @@ class FoxgloveRelayServer(ThreadingHTTPServer):
             for topic in [t for t in self.channels if t not in topics]:
                 removed.append(self.channels.pop(topic)['id'])
             sessions = list(self.sessions)
+        self._follow_clock(topics.get(CLOCK_TOPIC))
         for session in sessions:
             if added:
                 session.send_json(op='advertise', channels=added)
@@ -222,6 +233,50 @@ class FoxgloveRelayServer(ThreadingHTTPServer):
         if gone:
             for session in sessions:
                 session.send_json(op='unadvertiseServices', serviceIds=gone)
+
+    # ------------------------------------------------------------ time
+
+    def _follow_clock(self, type_name):
+        """Subscribe to /clock (JSON) while it is in the graph with the Clock type."""
+        present = bool(type_name) and (self.schemas.resolve(type_name) or type_name) == CLOCK_TYPE
+        if present == self.clock:
+            return
+        self.clock = present
+        if present:
+            # JSON, not cbor-raw: the relay converts whatever form the publisher sent
+            self.link.send(op='subscribe', id='foxglove-time', topic=CLOCK_TOPIC, type=CLOCK_TYPE)
+        else:
+            self.link.send(op='unsubscribe', id='foxglove-time', topic=CLOCK_TOPIC)
+
+    def tick(self, body):
+        """
+        Send every session the time of one /clock message (while /clock is followed).
+
+        The relay does not send this server what it published itself, so a
+        Foxglove client's own /clock comes here from its session too.
+
+        The relay sends one form per topic to a client: JSON, or the CDR bytes
+        (``cbor-raw``) when a Foxglove client subscribed to the /clock channel
+        too; Clock's CDR is the encapsulation, then int32 sec and uint32 nanosec.
+        """
+        if not self.clock or not isinstance(body, dict):
+            return
+        if isinstance(body.get('bytes'), (bytes, bytearray)):
+            data = body['bytes']
+            if len(data) < 12:
+                return
+            sec, nanosec = struct.unpack_from('<iI' if data[1] == 1 else '>iI', data, 4)
+        elif isinstance(body.get('clock'), dict):
+            sec, nanosec = body['clock'].get('sec'), body['clock'].get('nanosec')
+        else:
+            return
+        if not isinstance(sec, int) or not isinstance(nanosec, int) or sec < 0:
+            return
+        message = wire.time_message(sec * 1_000_000_000 + nanosec)
+        with self.lock:
+            sessions = list(self.sessions)
+        for session in sessions:
+            session.conn.send(message)
 
     # ------------------------------------------------------------ data
 
@@ -307,9 +362,10 @@ class FoxgloveSession:
         self._ready = threading.Condition()
         self._closed = False
         threading.Thread(target=self._send_loop, daemon=True).start()
-        self.send_json(op='serverInfo', name='colcon-wasm serve', capabilities=[
-            'clientPublish', 'services'], supportedEncodings=['json'],
-            metadata={'subprotocol': subprotocol}, sessionId=str(id(self)))
+        capabilities = ['clientPublish', 'services'] + (['time'] if server.clock else [])
+        self.send_json(op='serverInfo', name='colcon-wasm serve', capabilities=capabilities,
+                       supportedEncodings=['json'], metadata={'subprotocol': subprotocol},
+                       sessionId=str(id(self)))
         with server.lock:
             channels = list(server.channels.values())
             services = list(server.services.values())
@@ -411,6 +467,8 @@ class FoxgloveSession:
             self.status(wire.ERROR, f"clientPublish on {channel['topic']}: not JSON ({e})")
             return
         self.server.link.send(op='publish', topic=channel['topic'], msg=message)
+        if channel['topic'] == CLOCK_TOPIC:
+            self.server.tick(message)
 
     def forget_channels(self, ids):
         """Unadvertise channels that left the graph (their subscriptions end)."""

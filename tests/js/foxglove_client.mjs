@@ -10,7 +10,7 @@
  *   node foxglove_client.mjs demo URL      # the demo talker, listener, add_two_ints_server
  *   node foxglove_client.mjs params URL NODE PARAM VALUE
  *   node foxglove_client.mjs refused URL   # no subprotocol offered
- *   node foxglove_client.mjs clock URL     # publishes /clock; a second client gets the time
+ *   node foxglove_client.mjs clock URL [ROSBRIDGE_URL]  # publishes /clock (through a rosbridge server when given); a second client gets the time
  *   node foxglove_client.mjs slow URL      # a client that stops reading while a big topic floods
  *   node foxglove_client.mjs relay URL     # serve --foxglove: a page's talker, listener, add_two_ints_server
  *   node foxglove_client.mjs assets URL URI...  # fetchAsset of each URI (request ids 1, 2, ...)
@@ -253,15 +253,29 @@ async function slow() {
   done({ ok: true, sent: SENT, big: got.filter((m) => m.sub === 1).length, chatter, status });
 }
 
-/** Publish rosgraph_msgs/Clock on /clock (json); a client connecting then gets 'time' and TIME messages. */
+/**
+ * Publish rosgraph_msgs/Clock on /clock (json), by clientPublish or, with a
+ * rosbridge URL, as a rosbridge v2 client of that server (as a page is of
+ * serve's relay); a client connecting then gets 'time' and TIME messages.
+ */
 async function clock() {
   const pub = connect();
   await until('serverInfo', () => pub.info);
-  const id = pub.client.advertise({ topic: '/clock', encoding: 'json', schemaName: 'rosgraph_msgs/msg/Clock' });
+  const [rosbridgeUrl] = rest;
+  let send;
+  if (rosbridgeUrl) {
+    const rb = new WebSocket(rosbridgeUrl);
+    await new Promise((resolve, reject) => { rb.on('open', resolve); rb.on('error', reject); });
+    rb.send(JSON.stringify({ op: 'advertise', topic: '/clock', type: 'rosgraph_msgs/msg/Clock' }));
+    send = (msg) => rb.send(JSON.stringify({ op: 'publish', topic: '/clock', msg }));
+  } else {
+    const id = pub.client.advertise({ topic: '/clock', encoding: 'json', schemaName: 'rosgraph_msgs/msg/Clock' });
+    send = (msg) => pub.client.sendMessage(id, new TextEncoder().encode(JSON.stringify(msg)));
+  }
   let sec = 1000;
   const timer = setInterval(() => {
     sec++;
-    pub.client.sendMessage(id, new TextEncoder().encode(JSON.stringify({ clock: { sec, nanosec: 500 } })));
+    send({ clock: { sec, nanosec: 500 } });
   }, 50);
   await until('the /clock channel', () => pub.channels.get('/clock'));
   await new Promise((r) => setTimeout(r, 300));
