@@ -125,3 +125,13 @@ def test_pyodide_version_is_pinned_once():
     assert f"PYODIDE_VERSION = '{PYODIDE_VERSION}'" in spawn
     package = (REPO / 'tests' / 'js' / 'package.json').read_text()
     assert f'"pyodide": "{PYODIDE_VERSION}"' in package
+
+
+def test_time_duration_and_graph_queries(install):
+    """rclpy.time / duration as rclpy's, and graph queries that see the C++ nodes."""
+    code, out = colcon_wasm('launch', '--install-base', install, '--duration', 60,
+                            '--python', DATA / 'time_graph.py', 'demo_nodes/talker',
+                            'demo_nodes/listener', 'demo_nodes/add_two_ints_server')
+    assert '[py_graph]: time, duration and graph queries behave' in out, out[-6000:]
+    assert re.search(r'\[INFO\] \[time_graph-\d\]: process has finished cleanly', out), \
+        out[-3000:]

@@ -19,7 +19,7 @@
 import {
   BusClient, KIND_CLIENT, KIND_PUBLISHER, KIND_SERVICE, KIND_SUBSCRIPTION, TakeMode, WAIT_ITEM_WORDS, WaitKind,
 } from '../bus_client.mjs';
-import { TypeRegistry } from '../cdr.mjs';
+import { normalizeTypeName, TypeRegistry } from '../cdr.mjs';
 import { HEADER } from '../layout.mjs';
 import { blockingStdinRead } from '../program_worker.mjs';
 import { FromWorker } from '../protocol.mjs';
@@ -39,6 +39,23 @@ const port = isNode ? (await import('node:worker_threads')).parentPort : self;
 const STD_MSGS_STRING = {
   schema: 1, package: 'std_msgs', messages: {
     'std_msgs/msg/String': { fields: [{ name: 'data', type: 'string' }], constants: [], definition: 'string data\n' },
+  },
+};
+
+/**
+ * builtin_interfaces' Time and Duration when the install space has none,
+ * for rclpy.time.Time.to_msg() and rclpy.duration.Duration.to_msg().
+ */
+const BUILTIN_INTERFACES = {
+  schema: 1, package: 'builtin_interfaces', messages: {
+    'builtin_interfaces/msg/Time': {
+      fields: [{ name: 'sec', type: 'int32' }, { name: 'nanosec', type: 'uint32' }],
+      constants: [], definition: 'int32 sec\nuint32 nanosec\n',
+    },
+    'builtin_interfaces/msg/Duration': {
+      fields: [{ name: 'sec', type: 'int32' }, { name: 'nanosec', type: 'uint32' }],
+      constants: [], definition: 'int32 sec\nuint32 nanosec\n',
+    },
   },
 };
 
@@ -185,6 +202,22 @@ function busModule(client, registry, context, settle) {
       for (let i = 0; i < n; i++) ready.push(items[i * WAIT_ITEM_WORDS + 3] !== 0);
       return ready;
     },
+    /**
+     * The graph of a domain as one JSON text, for rclpy's graph queries:
+     * {nodes: [{name, namespace}], endpoints: [{kind, name, type, node,
+     * namespace, gid, qos}]}, kind one of publisher, subscription,
+     * service, client, types as `pkg/msg/Name`.
+     */
+    graph_json(domain) {
+      const g = client.graph({ domain });
+      return JSON.stringify({
+        nodes: g.nodes.map((n) => ({ name: n.name, namespace: n.namespace })),
+        endpoints: g.endpoints.map((e) => ({
+          kind: e.kindName, name: e.name, type: normalizeTypeName(e.type), node: e.node,
+          namespace: e.namespace, gid: Array.from(e.gid), qos: e.qos,
+        })),
+      });
+    },
     /** The type descriptions as one JSON text: {messages, services, actions}. */
     types_json() {
       return JSON.stringify({
@@ -251,6 +284,7 @@ async function start(msg) {
     }
   }
   if (!registry.has('std_msgs/msg/String')) registry.add(STD_MSGS_STRING);
+  if (!registry.has('builtin_interfaces/msg/Time')) registry.add(BUILTIN_INTERFACES);
   const { loadPyodide, indexURL } = await importPyodide(msg);
   const pyodide = await loadPyodide({ indexURL, env: { HOME: '/home/pyodide', ...msg.env } });
   pyodide.setStdout({ batched: (line) => log('stdout', line) });

@@ -11,8 +11,11 @@
 export const RCLPY_FILES = Object.freeze([
   'rclpy/__init__.py',
   'rclpy/_bus.py',
+  'rclpy/_graph.py',
   'rclpy/_messages.py',
+  'rclpy/clock.py',
   'rclpy/context.py',
+  'rclpy/duration.py',
   'rclpy/executors.py',
   'rclpy/logging.py',
   'rclpy/node.py',
@@ -20,4 +23,6 @@ export const RCLPY_FILES = Object.freeze([
   'rclpy/parameter_service.py',
   'rclpy/qos.py',
   'rclpy/task.py',
+  'rclpy/time.py',
+  'rclpy/topic_endpoint_info.py',
 ]);

@@ -5,10 +5,13 @@
 
 import time
 
+from rclpy import _graph
 from rclpy import _messages
 from rclpy import parameter_service
 from rclpy._bus import bus
 from rclpy._bus import plain_to_js
+from rclpy._graph import NodeNameNonExistentError  # noqa: F401 (rclpy's name for it)
+from rclpy.clock import ROSClock
 from rclpy.context import default_context
 from rclpy.logging import RcutilsLogger
 from rclpy.parameter import Parameter
@@ -204,26 +207,6 @@ class Timer:
             self._next = now + self._period
 
 
-class Time:
-    """A point in time of a clock (nanoseconds)."""
-
-    def __init__(self, *, seconds=0, nanoseconds=0):
-        """Create a time."""
-        self.nanoseconds = int(seconds * 10 ** 9) + int(nanoseconds)
-
-    def seconds_nanoseconds(self):
-        """Return (seconds, nanoseconds)."""
-        return divmod(self.nanoseconds, 10 ** 9)
-
-
-class Clock:
-    """The system clock."""
-
-    def now(self):
-        """Return the current time."""
-        return Time(nanoseconds=time.time_ns())
-
-
 def _expand(name, namespace, node_name, what):
     if not name:
         raise ValueError(f'{what} name must not be empty')
@@ -256,7 +239,7 @@ class Node:
         self._handle = bus.create_node(node_name, namespace, self.context.domain_id)
         self._logger = RcutilsLogger(node_name if namespace == '/' else
                                      f"{namespace.strip('/').replace('/', '.')}.{node_name}")
-        self._clock = Clock()
+        self._clock = ROSClock()
         self.publishers = []
         self.subscriptions = []
         self.timers = []
@@ -287,7 +270,7 @@ class Node:
         return self._logger
 
     def get_clock(self):
-        """Return the node's clock (the system clock)."""
+        """Return the node's clock (ROS time: the system time, simulated time not yet)."""
         return self._clock
 
     def resolve_topic_name(self, topic):
@@ -429,6 +412,75 @@ class Node:
             if not result.successful:
                 return result
         return SetParametersResult(successful=True)
+
+    # ------------------------------------------------------------ graph
+
+    def get_node_names(self):
+        """Return the names of the nodes in this node's domain."""
+        return [n['name'] for n in _graph.snapshot(self.context.domain_id)[0]]
+
+    def get_node_names_and_namespaces(self):
+        """Return ``[(name, namespace)]`` of the nodes in this node's domain."""
+        return [(n['name'], n['namespace']) for n in _graph.snapshot(self.context.domain_id)[0]]
+
+    def get_node_names_and_namespaces_with_enclaves(self):
+        """Return ``[(name, namespace, enclave)]`` (one enclave, ``/``, on the bus)."""
+        return [(n, ns, '/') for n, ns in self.get_node_names_and_namespaces()]
+
+    def get_topic_names_and_types(self, no_demangle=False):
+        """Return ``[(topic, [types])]`` of every publisher and subscription in the domain."""
+        _, endpoints = _graph.snapshot(self.context.domain_id)
+        return _graph.names_and_types(endpoints, ('publisher', 'subscription'))
+
+    def get_service_names_and_types(self):
+        """Return ``[(service, [types])]`` of every service server in the domain."""
+        _, endpoints = _graph.snapshot(self.context.domain_id)
+        return _graph.names_and_types(endpoints, ('service',))
+
+    def _by_node(self, kinds, node_name, node_namespace):
+        nodes, endpoints = _graph.snapshot(self.context.domain_id)
+        _graph.require_node(nodes, node_name, node_namespace)
+        return _graph.names_and_types(endpoints, kinds, (node_name, node_namespace))
+
+    def get_publisher_names_and_types_by_node(self, node_name, node_namespace,
+                                              no_demangle=False):
+        """Return ``[(topic, [types])]`` a node publishes; NodeNameNonExistentError if none."""
+        return self._by_node(('publisher',), node_name, node_namespace)
+
+    def get_subscriber_names_and_types_by_node(self, node_name, node_namespace,
+                                               no_demangle=False):
+        """Return ``[(topic, [types])]`` a node subscribes to."""
+        return self._by_node(('subscription',), node_name, node_namespace)
+
+    def get_service_names_and_types_by_node(self, node_name, node_namespace):
+        """Return ``[(service, [types])]`` a node serves."""
+        return self._by_node(('service',), node_name, node_namespace)
+
+    def get_client_names_and_types_by_node(self, node_name, node_namespace):
+        """Return ``[(service, [types])]`` a node has clients of."""
+        return self._by_node(('client',), node_name, node_namespace)
+
+    def count_publishers(self, topic_name):
+        """Return the number of publishers of a topic (the name is expanded and remapped)."""
+        _, endpoints = _graph.snapshot(self.context.domain_id)
+        return _graph.count(endpoints, 'publisher', self.resolve_topic_name(topic_name))
+
+    def count_subscribers(self, topic_name):
+        """Return the number of subscriptions of a topic."""
+        _, endpoints = _graph.snapshot(self.context.domain_id)
+        return _graph.count(endpoints, 'subscription', self.resolve_topic_name(topic_name))
+
+    def get_publishers_info_by_topic(self, topic_name, no_mangle=False):
+        """Return a TopicEndpointInfo for each publisher of a topic."""
+        _, endpoints = _graph.snapshot(self.context.domain_id)
+        topic = topic_name if no_mangle else self.resolve_topic_name(topic_name)
+        return _graph.endpoint_infos(endpoints, 'publisher', topic)
+
+    def get_subscriptions_info_by_topic(self, topic_name, no_mangle=False):
+        """Return a TopicEndpointInfo for each subscription of a topic."""
+        _, endpoints = _graph.snapshot(self.context.domain_id)
+        topic = topic_name if no_mangle else self.resolve_topic_name(topic_name)
+        return _graph.endpoint_infos(endpoints, 'subscription', topic)
 
     def destroy_publisher(self, publisher):
         """Destroy a publisher of this node."""
