@@ -135,3 +135,11 @@ def test_time_duration_and_graph_queries(install):
     assert '[py_graph]: time, duration and graph queries behave' in out, out[-6000:]
     assert re.search(r'\[INFO\] \[time_graph-\d\]: process has finished cleanly', out), \
         out[-3000:]
+
+
+def test_use_sim_time_follows_clock(install):
+    """A node with use_sim_time:=true reads /clock's time; false goes back to the system time."""
+    code, out = colcon_wasm('run', '--install-base', install, '--duration', 60,
+                            '--python', DATA / 'sim_time.py')
+    assert '[sim]: sim time follows /clock' in out, out[-6000:]
+    assert code == 0, out[-3000:]

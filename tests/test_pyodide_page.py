@@ -126,7 +126,8 @@ def test_parameters_set_from_the_page_reach_a_python_node():
     assert result['ok'], explain_page(result)
     seen = json.loads(result['saved']['page'])
     assert 'error' not in seen, seen
-    assert seen['names'] == ['greeting', 'rate'], seen
+    # every rclpy node declares use_sim_time
+    assert seen['names'] == ['greeting', 'rate', 'use_sim_time'], seen
     assert [(p['name'], p['value']) for p in seen['before']] == [('greeting', 'hello'),
                                                                  ('rate', 5)], seen
     assert seen['set']['successful'] is True, seen

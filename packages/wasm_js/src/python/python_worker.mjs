@@ -59,6 +59,16 @@ const BUILTIN_INTERFACES = {
   },
 };
 
+/** rosgraph_msgs/msg/Clock when the install space has none, for use_sim_time (rclpy/time_source.py). */
+const ROSGRAPH_CLOCK = {
+  schema: 1, package: 'rosgraph_msgs', messages: {
+    'rosgraph_msgs/msg/Clock': {
+      fields: [{ name: 'clock', type: 'builtin_interfaces/msg/Time' }],
+      constants: [], definition: 'builtin_interfaces/Time clock\n',
+    },
+  },
+};
+
 const post = (m) => port.postMessage(m);
 const log = (stream, text) => post({ type: FromWorker.LOG, stream, text: String(text) });
 
@@ -285,6 +295,7 @@ async function start(msg) {
   }
   if (!registry.has('std_msgs/msg/String')) registry.add(STD_MSGS_STRING);
   if (!registry.has('builtin_interfaces/msg/Time')) registry.add(BUILTIN_INTERFACES);
+  if (!registry.has('rosgraph_msgs/msg/Clock')) registry.add(ROSGRAPH_CLOCK);
   const { loadPyodide, indexURL } = await importPyodide(msg);
   const pyodide = await loadPyodide({ indexURL, env: { HOME: '/home/pyodide', ...msg.env } });
   pyodide.setStdout({ batched: (line) => log('stdout', line) });

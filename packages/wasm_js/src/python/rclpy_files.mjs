@@ -24,5 +24,6 @@ export const RCLPY_FILES = Object.freeze([
   'rclpy/qos.py',
   'rclpy/task.py',
   'rclpy/time.py',
+  'rclpy/time_source.py',
   'rclpy/topic_endpoint_info.py',
 ]);

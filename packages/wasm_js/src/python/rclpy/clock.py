@@ -49,16 +49,32 @@ class ROSClock(Clock):
     """
     The ROS time clock of a node.
 
-    Simulated time (``use_sim_time`` and ``/clock``) is not followed yet:
-    ``ros_time_is_active`` is False and ``now()`` is the system time, as in
-    rclpy while no /clock has been received.
+    While simulated time is active (the node's ``use_sim_time`` is true,
+    rclpy/time_source.py), ``now()`` is the time of the last ``/clock``
+    message (zero before the first one, as rclpy's); otherwise the system
+    time.
     """
 
     def __init__(self):
         """Create a ROS_TIME clock."""
         super().__init__(clock_type=ClockType.ROS_TIME)
+        self._ros_time_is_active = False
+        self._ros_time_ns = 0
 
     @property
     def ros_time_is_active(self):
-        """Return whether simulated time is in use (never, yet)."""
-        return False
+        """Return whether simulated time (``/clock``) is in use."""
+        return self._ros_time_is_active
+
+    def _set_ros_time_is_active(self, active):
+        self._ros_time_is_active = bool(active)
+
+    def _set_ros_time(self, nanoseconds):
+        self._ros_time_ns = int(nanoseconds)
+
+    def now(self):
+        """Return the simulated time while it is active, else the system time."""
+        if self._ros_time_is_active:
+            from rclpy.time import Time
+            return Time(nanoseconds=self._ros_time_ns, clock_type=ClockType.ROS_TIME)
+        return super().now()

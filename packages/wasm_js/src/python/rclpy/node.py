@@ -252,6 +252,8 @@ class Node:
         self._parameter_service = None
         if kwargs.get('start_parameter_services', True) and parameter_service.available():
             self._parameter_service = parameter_service.ParameterService(self)
+        from rclpy.time_source import TimeSource
+        self._time_source = TimeSource(self)
 
     def get_name(self):
         """Return the node's name."""
@@ -270,7 +272,7 @@ class Node:
         return self._logger
 
     def get_clock(self):
-        """Return the node's clock (ROS time: the system time, simulated time not yet)."""
+        """Return the node's clock (ROS time: /clock while use_sim_time is true)."""
         return self._clock
 
     def resolve_topic_name(self, topic):
