@@ -398,3 +398,30 @@ def test_png_fragments_and_binary_limits_on_subscriptions():
         assert png.until(lambda m: m.get('op') == 'png') is not None
     finally:
         relay.close()
+
+
+def test_rosapi_node_details_answers_for_a_client_that_is_one_node(relay):
+    """node_details: a one-node client's endpoints; nothing for a node of a many-node tab."""
+    one, many, asker = Client(relay), Client(relay), Client(relay)
+    for c in (one, many, asker):
+        c.receive()
+    one.send({'op': 'colcon_wasm_graph', 'nodes': ['/talker'], 'version': 2})
+    one.send({'op': 'advertise', 'topic': '/chatter', 'type': 't/msg/Time'})
+    one.send({'op': 'subscribe', 'topic': '/cmd', 'type': 't/msg/Time', 'id': 'c'})
+    one.send({'op': 'advertise_service', 'service': '/talker/reset', 'type': 't/srv/Reset'})
+    many.send({'op': 'colcon_wasm_graph', 'nodes': ['/a', '/b'], 'version': 2})
+    many.send({'op': 'advertise', 'topic': '/other', 'type': 't/msg/Time'})
+    time.sleep(0.2)
+
+    def details(node, rid):
+        asker.send({'op': 'call_service', 'id': rid, 'service': '/rosapi/node_details',
+                    'args': {'node': node}})
+        reply = asker.until(lambda m: m.get('op') == 'service_response' and m['id'] == rid)
+        assert reply and reply['result'], reply
+        return reply['values']
+
+    assert details('/talker', 'd1') == {'subscribing': ['/cmd'], 'publishing': ['/chatter'],
+                                        'services': ['/talker/reset']}
+    assert details('talker', 'd2')['publishing'] == ['/chatter']  # a relative name
+    assert details('/a', 'd3') == {'subscribing': [], 'publishing': [], 'services': []}
+    assert details('/nobody', 'd4') == {'subscribing': [], 'publishing': [], 'services': []}

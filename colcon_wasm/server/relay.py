@@ -646,7 +646,7 @@ class Relay:
                 nodes.update(p.label)
             return {'nodes': sorted(nodes)}
         if name == 'node_details':
-            return {'subscribing': [], 'publishing': [], 'services': []}
+            return self._node_details(full(arg('node')))
         if name == 'topic_type':
             return {'type': topics.get(full(arg('topic')), '')}
         if name == 'service_type':
@@ -668,6 +668,22 @@ class Relay:
             now = time.time()
             return {'time': {'sec': int(now), 'nanosec': int((now % 1) * 1e9)}}
         return {'version': 2, 'distro': 'humble'}
+
+    def _node_details(self, node):
+        """
+        Answer rosapi node_details from the client that stands for ``node`` alone.
+
+        The relay knows its clients' endpoints, and the nodes each
+        colcon-wasm client reports, not which of a tab's nodes holds which
+        endpoint; so a node of a tab with several nodes (and a node nobody
+        stands for) gets empty lists, not its neighbours' endpoints.
+        """
+        alone = [p for p in self.peers if p.label == [node]]
+        return {
+            'subscribing': sorted({t for p in alone for t in p.subscriptions}),
+            'publishing': sorted({t for p in alone for t in p.publications}),
+            'services': sorted(n for n, (p, _) in self.services.items() if p in alone),
+        }
 
     def _typedefs(self, type_name):
         out, seen = [], set()
