@@ -402,8 +402,8 @@ def test_png_fragments_and_binary_limits_on_subscriptions():
 
 def test_rosapi_node_details_answers_for_a_client_that_is_one_node(relay):
     """node_details: a one-node client's endpoints; nothing for a node of a many-node tab."""
-    one, many, asker = Client(relay), Client(relay), Client(relay)
-    for c in (one, many, asker):
+    one, many, caller = Client(relay), Client(relay), Client(relay)
+    for c in (one, many, caller):
         c.receive()
     one.send({'op': 'colcon_wasm_graph', 'nodes': ['/talker'], 'version': 2})
     one.send({'op': 'advertise', 'topic': '/chatter', 'type': 't/msg/Time'})
@@ -414,9 +414,9 @@ def test_rosapi_node_details_answers_for_a_client_that_is_one_node(relay):
     time.sleep(0.2)
 
     def details(node, rid):
-        asker.send({'op': 'call_service', 'id': rid, 'service': '/rosapi/node_details',
+        caller.send({'op': 'call_service', 'id': rid, 'service': '/rosapi/node_details',
                     'args': {'node': node}})
-        reply = asker.until(lambda m: m.get('op') == 'service_response' and m['id'] == rid)
+        reply = caller.until(lambda m: m.get('op') == 'service_response' and m['id'] == rid)
         assert reply and reply['result'], reply
         return reply['values']
 

@@ -676,7 +676,7 @@ class Relay:
         The relay knows its clients' endpoints, and the nodes each
         colcon-wasm client reports, not which of a tab's nodes holds which
         endpoint; so a node of a tab with several nodes (and a node nobody
-        stands for) gets empty lists, not its neighbours' endpoints.
+        stands for) gets empty lists, not the other nodes' endpoints.
         """
         alone = [p for p in self.peers if p.label == [node]]
         return {
