@@ -52,6 +52,9 @@ class _Space:
     def ros2msg_schemas(self):
         return Ros2MsgSchemas(self._messages)
 
+    def packages(self):
+        return {}
+
 
 def test_schema_file_has_full_texts_and_names_what_cannot_be_assembled():
     """The file holds rosbag2's complete texts; a type with a missing dependency is in errors."""

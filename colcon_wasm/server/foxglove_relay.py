@@ -107,6 +107,7 @@ class FoxgloveRelayServer(ThreadingHTTPServer):
         self._channel_ids = itertools.count(1)
         self._service_ids = itertools.count(1)
         self.clock = False      # following /clock: the time capability
+        self._clock_type = None  # /clock's type in the relay's topics
         self._stop = threading.Event()
         if ':' in host:
             self.address_family = socket.AF_INET6
@@ -162,6 +163,11 @@ class FoxgloveRelayServer(ThreadingHTTPServer):
                         self._ask('/rosapi/service_type', {'service': name},
                                   kind=f'type:{name}')
                 self._drop_services(set((msg.get('values') or {}).get('services', [])))
+            elif rid == 'foxglove-catalog:clock-publishers' and msg.get('result'):
+                # this server's own /clock subscription keeps /clock in the relay's
+                # topics: follow it while someone publishes it
+                publishers = (msg.get('values') or {}).get('publishers') or []
+                self._follow_clock(self._clock_type if publishers else None)
             elif rid.startswith('foxglove-catalog:type:') and msg.get('result'):
                 self._add_service(rid[len('foxglove-catalog:type:'):],
                                   (msg.get('values') or {}).get('type', ''))
@@ -195,7 +201,11 @@ class FoxgloveRelayServer(ThreadingHTTPServer):
             for topic in [t for t in self.channels if t not in topics]:
                 removed.append(self.channels.pop(topic)['id'])
             sessions = list(self.sessions)
-        self._follow_clock(topics.get(CLOCK_TOPIC))
+        self._clock_type = topics.get(CLOCK_TOPIC)
+        if self._clock_type:
+            self._ask('/rosapi/publishers', {'topic': CLOCK_TOPIC}, kind='clock-publishers')
+        else:
+            self._follow_clock(None)
         for session in sessions:
             if added:
                 session.send_json(op='advertise', channels=added)
