@@ -51,7 +51,7 @@ def _worker_chunks(tmp_path):
                            str(out)], capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stdout + done.stderr
     report = json.loads(done.stdout)
-    chunks = [body for kind, body in frames.read_frames(io.BytesIO(out.read_bytes()))
+    chunks = [bytes(body) for kind, body in frames.read_frames(io.BytesIO(out.read_bytes()))
               if kind == frames.CHUNK]
     return report, chunks
 

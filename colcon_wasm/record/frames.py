@@ -85,15 +85,14 @@ def decode_chunk(body):
     return view[4 + n:at], int(meta['start']), int(meta['end']), view[at:], channels
 
 
-def read_frames(stream, *, reuse=False):
+def read_frames(stream):
     """
     Yield ``(kind, body)`` from a binary stream until it ends.
 
     A frame cut off by the end of the stream (the host died) ends it too.
-
-    :param reuse: read every body into one buffer that grows as needed and
-      yield a memoryview of it, valid until the next frame is read: no
-      allocation (and no page faults) per megabyte chunk
+    Every body is read into one buffer that grows as needed, and is yielded
+    as a memoryview of it, valid until the next frame is read: no
+    allocation (and no page faults) per megabyte chunk. Copy what is kept.
     """
     buffer = bytearray(0)
     head = bytearray(_HEAD.size)
@@ -101,12 +100,6 @@ def read_frames(stream, *, reuse=False):
         if not _read_into(stream, memoryview(head)):
             return
         length, kind = _HEAD.unpack(head)
-        if not reuse:
-            body = _read_exactly(stream, length - 1)
-            if body is None:
-                return
-            yield kind, body
-            continue
         if len(buffer) < length - 1:
             buffer = bytearray(max(length - 1, 2 * len(buffer)))
         body = memoryview(buffer)[:length - 1]
@@ -123,14 +116,3 @@ def _read_into(stream, view):
             return False
         view = view[n:]
     return True
-
-
-def _read_exactly(stream, size):
-    parts = []
-    while size:
-        part = stream.read(size)
-        if not part:
-            return None
-        parts.append(part)
-        size -= len(part)
-    return b''.join(parts)

@@ -187,7 +187,7 @@ class BagSession:
         dropped = 0
         try:
             # the chunk is written before the next frame is read: one buffer for all
-            for kind, body in frames.read_frames(stream, reuse=True):
+            for kind, body in frames.read_frames(stream):
                 if kind == frames.CHANNEL:
                     c = json.loads(bytes(body))
                     try:
