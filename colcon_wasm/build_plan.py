@@ -11,7 +11,7 @@ class BuildPlan:
     """How one package is built with `--wasm`."""
 
     def __init__(self, *, original_type, recipe, rule, emscripten, settings,
-                 host_tool=False, underlays=(), system_rule=None,
+                 host_tool=False, python_package=False, underlays=(), system_rule=None,
                  extra_cmake_args=()):
         """
         Describe the wasm build of a package.
@@ -25,6 +25,9 @@ class BuildPlan:
         :param settings: the :class:`colcon_wasm.options.WasmSettings`
         :param bool host_tool: a recipe host tool (pure Python, built by its
           stock task for the host; no CMake arguments, no post-processing)
+        :param bool python_package: an ``ament_python`` package packed for
+          Pyodide (installed by its stock task, then given a manifest by
+          :mod:`colcon_wasm.python_package`)
         :param underlays: install bases of the `--wasm` underlays, highest
           priority first
         :param system_rule: for a package built from Debian's source (a
@@ -38,6 +41,7 @@ class BuildPlan:
         self.emscripten = emscripten
         self.settings = settings
         self.host_tool = host_tool
+        self.python_package = python_package
         self.underlays = list(underlays)
         self.system_rule = system_rule
         self.extra_cmake_args = list(extra_cmake_args)

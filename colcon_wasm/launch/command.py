@@ -53,6 +53,12 @@ def make_plan(values, install_base):
     return plan_items(others)
 
 
+def find_pyodide(option):
+    """Find the Pyodide folder (``colcon_wasm.launch.python_nodes.find_pyodide``)."""
+    from colcon_wasm.launch.python_nodes import find_pyodide as find
+    return find(option)
+
+
 def _add_python_nodes(description, python, install_space, bases, pyodide, print_plan):
     from colcon_wasm.launch.install_view import ament_prefixes
     from colcon_wasm.launch.install_view import view_bases
@@ -93,6 +99,9 @@ def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, com
         description.update(bridges or {}, command=command)
         if python:
             _add_python_nodes(description, python, install_space, bases, pyodide, print_plan)
+        elif any(p.get('python') for p in description['processes']) and not print_plan:
+            # entry points of Python packages
+            description['pyodide'] = str(find_pyodide(pyodide))
     except (LaunchError, InstallSpaceError) as e:
         print(f'{command}: {e}', file=err)
         return 1

@@ -78,6 +78,8 @@ class Executable:
                       for f in entry.get('files', [])]
         self.uses_bus = bool(entry.get('uses_bus', True))
         self.pthread = bool(entry.get('pthread', False))
+        # an entry point of a Python package: {'module', 'function'} (Pyodide runs it)
+        self.python = entry.get('python')
         # a package may install executables for another one (colcon-wasm's
         # component containers are rclcpp_components' executables)
         self.package_name = entry.get('package') or package.name
@@ -118,6 +120,13 @@ class Package:
                     f"rebuild '{self.name}' with this colcon-wasm")
             self._manifest = data
         return self._manifest
+
+    def python_path(self):
+        """Return the folders of the package's Python modules (absolute; none for C++ packages)."""
+        manifest = self.manifest
+        if manifest is None or not isinstance(manifest.get('python'), dict):
+            return []
+        return [self.prefix / p for p in manifest['python'].get('path', [])]
 
     def executables(self):
         """Return the package's Executables (none without a manifest)."""
@@ -236,6 +245,21 @@ class InstallSpace:
             for executable in own + provided:
                 found[(executable.package_name, executable.name)] = executable
         return found
+
+    def python_path(self):
+        """
+        Return the module folders of every Python package, highest priority first.
+
+        What ``PYTHONPATH`` holds after sourcing the install space natively: a
+        Python node imports the modules of the other packages too.
+        """
+        folders = []
+        for package in self.packages().values():
+            try:
+                folders += [f for f in package.python_path() if f not in folders]
+            except InstallSpaceError:
+                continue  # a broken manifest: its executables are refused when run
+        return folders
 
     def type_description_files(self):
         """Return the types.json files of all packages."""

@@ -11,10 +11,11 @@ priority:
   recipe's extra dependencies (`depends`), so that `--packages-up-to` and the
   build order see them;
 * :class:`WasmPackageSelection` (low priority, runs last, after the user's
-  own selection) unselects what the recipe skips and pure Python packages,
-  checks that nothing selected needs a skipped package, keeps a workspace
-  copy of a bundled package over the bundled one, and switches CMake package
-  types to the `wasm.*` build tasks.
+  own selection) unselects what the recipe skips and Python packages of
+  other types than ``ament_python``, checks that nothing selected needs a
+  skipped package, keeps a workspace copy of a bundled package over the
+  bundled one, and switches CMake and ``ament_python`` package types to the
+  `wasm.*` build tasks (``ament_python`` packages are packed for Pyodide).
 """
 
 import os
@@ -48,6 +49,20 @@ WASM_TYPES = {
     'ros.cmake': 'wasm.ros.cmake',
     'ros.ament_cmake': 'wasm.ros.ament_cmake',
 }
+
+"""
+Python package types packed for Pyodide (installed by their stock task,
+given a manifest by colcon_wasm.python_package), and their `wasm.*` names.
+"""
+PYTHON_TYPES = {
+    'ros.ament_python': 'wasm.ros.ament_python',
+}
+
+"""
+Packages a Python package may need that colcon-wasm's runtime provides in
+their place: the rclpy of packages/wasm_js/src/python (docs/python.md).
+"""
+RUNTIME_PYTHON_PACKAGES = {'rclpy': "colcon-wasm's rclpy for Pyodide"}
 
 """
 Package types of host tools wrapped by the wasm task (it skips them when up
@@ -193,12 +208,15 @@ class WasmPackageSelection(PackageSelectionExtensionPoint):
             elif pkg.name in recipe.host_tools and \
                     HOST_TOOL_TYPE_PREFIX + pkg.type in HOST_TOOL_TYPES:
                 wasm_type = HOST_TOOL_TYPE_PREFIX + pkg.type
+            elif pkg.type in PYTHON_TYPES:
+                wasm_type = PYTHON_TYPES[pkg.type]
             else:
                 continue
             pkg.metadata[PLAN_KEY] = BuildPlan(
                 original_type=pkg.type, recipe=recipe,
                 rule=recipe.rule(pkg.name), emscripten=emscripten,
-                settings=settings, host_tool=pkg.type not in WASM_TYPES,
+                settings=settings, host_tool=wasm_type.startswith(HOST_TOOL_TYPE_PREFIX),
+                python_package=wasm_type in PYTHON_TYPES.values(),
                 underlays=[u.base for u in get_underlays(args)],
                 system_rule=pkg.metadata.get(SYSTEM_RULE_KEY),
                 extra_cmake_args=system_cmake_args(recipe))
@@ -242,10 +260,13 @@ def _select_one(decorator, recipe):
             f"Building host tool '{pkg.name}' ({pkg.type}) with its usual "
             'task: it runs on the host at configure time')
         return
+    elif pkg.type in PYTHON_TYPES:
+        return
     else:
         logger.info(
             f"Skipping '{pkg.name}' for --wasm: a '{pkg.type}' package, only "
-            'CMake packages are built to WebAssembly')
+            'CMake packages are built to WebAssembly and ament_python packages '
+            'packed for Pyodide')
     decorator.selected = False
 
 
@@ -253,7 +274,8 @@ def _never_built(pkg, recipe):
     """Check if --wasm never builds a package (whatever the selection)."""
     if recipe.skip_reason(pkg.name):
         return True
-    return pkg.type not in WASM_TYPES and pkg.name not in recipe.host_tools
+    return pkg.type not in WASM_TYPES and pkg.type not in PYTHON_TYPES and \
+        pkg.name not in recipe.host_tools
 
 
 def _forget_left_out(decorators, left_out):
@@ -287,16 +309,25 @@ def _check_skipped_dependencies(decorators, recipe):
     (`drop-depends`), dependencies only the package's Python part needs
     (`python-only` skips: rclpy, python_cmake_module), and run-only
     dependencies (a metapackage's members, a launch file's nodes), which are
-    simply not there at run time.
+    simply not there at run time. A Python package (``ament_python``) gets
+    colcon-wasm's rclpy in place of rclpy.
     """
     problems = []
     for decorator in decorators:
         pkg = decorator.descriptor
-        if not decorator.selected or pkg.type not in WASM_TYPES:
+        if not decorator.selected or (
+                pkg.type not in WASM_TYPES and pkg.type not in PYTHON_TYPES):
             continue
         allowed = set(recipe.rule(pkg.name).drop_depends)
         build = {str(d) for d in pkg.dependencies.get('build', ())}
         skipped = {d for d in _dependency_names(pkg) if recipe.skip_reason(d)}
+        if pkg.type in PYTHON_TYPES:
+            provided = sorted(d for d in skipped if d in RUNTIME_PYTHON_PACKAGES)
+            for dep in provided:
+                logger.info(
+                    f"Python package '{pkg.name}' uses {RUNTIME_PYTHON_PACKAGES[dep]} "
+                    f"in place of '{dep}' ({recipe.skip_reason(dep)})")
+            allowed |= set(provided)
         python_parts = sorted(
             d for d in skipped if d not in allowed and recipe.is_python_only(d))
         if python_parts:

@@ -126,14 +126,7 @@ class Site:
             packages.append({
                 'name': name,
                 'version': versions.get(name),
-                'executables': [{
-                    'name': e.name,
-                    'url': self._url(e.package, e.js),
-                    'uses_bus': e.uses_bus,
-                    'pthread': e.pthread,
-                    'size': sum(f.get('size', 0) for f in e.files),
-                    'gzip_size': sum(f.get('gzip_size', 0) for f in e.files),
-                } for e in by_package[name]],
+                'executables': [self._executable(e) for e in by_package[name]],
             })
         return {
             'title': self.title,
@@ -147,11 +140,48 @@ class Site:
             'rosbridge': self.relay_path,
             # Python nodes in the page: Pyodide's URL, or why there is none
             'python': {'pyodide': '/pyodide/' if self.pyodide_dir else None,
-                       'problem': self.pyodide_problem},
+                       'problem': self.pyodide_problem, **self._python_packages()},
             # what every program started by the page sees (install_view.py)
             'mounts': self.views.mounts(),
             'environment': {AMENT_PREFIX_PATH: ':'.join(ament_prefixes(self.views.bases))},
         }
+
+    def _executable(self, e):
+        """Describe one executable for the page (a C++ program, or a Python entry point)."""
+        entry = {
+            'name': e.name,
+            'url': self._url(e.package, e.js),
+            'uses_bus': e.uses_bus,
+            'pthread': e.pthread,
+            'size': sum(f.get('size', 0) for f in e.files),
+            'gzip_size': sum(f.get('gzip_size', 0) for f in e.files),
+        }
+        if e.python:
+            # Pyodide runs it, with the install space's Python packages (python.files)
+            entry['python'] = dict(e.python)
+            entry['file'] = str(e.js)
+        return entry
+
+    def _python_packages(self):
+        """
+        Describe the module folders of the Python packages for the page.
+
+        ``path``: the folders (real paths, highest priority first), put on
+        ``sys.path``; ``files``: each file with its real path and its URL.
+        """
+        folders = []
+        files = []
+        for package in self.install_space.packages().values():
+            try:
+                manifest = package.manifest or {}
+                own = package.python_path()
+            except Exception:  # a broken manifest is reported by workspace()
+                continue
+            folders += [str(f) for f in own if str(f) not in folders]
+            for relative in (manifest.get('python') or {}).get('files', []):
+                files.append({'path': str(package.prefix / relative),
+                              'url': self._url(package, package.prefix / relative)})
+        return {'path': folders, 'files': files}
 
     def _base_of(self, package):
         """Return the install base (the install space's, or an underlay's) of a package."""
@@ -184,11 +214,15 @@ class Site:
         for package in packages.values():
             try:
                 executables = package.executables()
+                python = (package.manifest or {}).get('python') or {}
             except Exception:  # broken manifest: nothing of it is served
-                executables = []
+                executables, python = [], {}
             for executable in executables:
                 for relative in [executable.entry['js']] + [f['path'] for f in executable.files]:
                     allowed[(package.name, Path(relative).as_posix())] = package
+            # the modules of a Python package (the page's Python nodes import them)
+            for relative in python.get('files', []):
+                allowed[(package.name, Path(relative).as_posix())] = package
             if package.types_path.is_file():
                 relative = package.types_path.relative_to(package.prefix).as_posix()
                 allowed[(package.name, relative)] = package

@@ -19,6 +19,7 @@ from colcon_wasm.link.report import stale_links
 from colcon_wasm.options import cmake_arguments
 from colcon_wasm.patch import prepare_patched_source
 from colcon_wasm.postprocess import postprocess_package
+from colcon_wasm.python_package import pack_python_package
 from colcon_wasm.task.stamp import build_inputs
 from colcon_wasm.task.stamp import is_up_to_date
 from colcon_wasm.task.stamp import remove_stamp
@@ -85,6 +86,8 @@ class WasmBuildTask(TaskExtensionPoint):
 
         if plan.host_tool:
             return await self._build_host_tool(stock, plan)
+        if plan.python_package:
+            return await self._build_python_package(stock, plan)
 
         args.cmake_args = cmake_arguments(
             emscripten=plan.emscripten, settings=plan.settings,
@@ -154,6 +157,39 @@ class WasmBuildTask(TaskExtensionPoint):
         rc = await stock.build()
         if rc:
             return rc
+        write_stamp(args.build_base, inputs)
+        return 0
+
+    async def _build_python_package(self, stock, plan):
+        """
+        Install an ``ament_python`` package with its stock task and pack it for Pyodide.
+
+        Its modules run in Pyodide as they are installed; the manifest
+        (:mod:`colcon_wasm.python_package`) lists its entry points.
+        """
+        pkg = self.context.pkg
+        args = self.context.args
+        inputs = build_inputs(
+            args=args, source=Path(args.path), patches=[],
+            settings={'python_package': plan.original_type,
+                      'recipe': plan.recipe.describe()},
+            dependencies=self.context.dependencies)
+        if self._up_to_date(inputs):
+            return 0
+        stock.set_context(context=self.context)
+        rc = await stock.build()
+        if rc:
+            return rc
+        self.progress('wasm')
+        try:
+            manifest = pack_python_package(
+                pkg_name=pkg.name, pkg_version=pkg.metadata.get('version'),
+                install_prefix=args.install_base, recipe=plan.recipe.describe())
+        except ColconWasmError as e:
+            logger.error(exit_message(e))
+            return 1
+        names = ', '.join(e['name'] for e in manifest['executables']) or 'no entry points'
+        logger.info(f"Packed Python package '{pkg.name}' for Pyodide ({names})")
         write_stamp(args.build_base, inputs)
         return 0
 

@@ -72,6 +72,12 @@ class WasmTestTask(TaskExtensionPoint):
                 f"Not testing host tool '{pkg.name}' with colcon test --wasm: it is "
                 'Python for the build host; its tests run with a native colcon test')
             return 0
+        if getattr(plan, 'python_package', False):
+            logger.info(
+                f"Not testing Python package '{pkg.name}' with colcon test --wasm: its "
+                "tests are pytest modules for the host's CPython (linters, mostly); run "
+                'them with a native colcon test')
+            return 0
         stock = get_task_extension('colcon_core.task.test', plan.original_type)
         if stock is None:
             logger.error(

@@ -133,6 +133,7 @@ export class Session {
   startProcess(pkg, exe, args) {
     const info = this.workspace.packages.find((p) => p.name === pkg)?.executables.find((e) => e.name === exe);
     if (!info) throw new Error(`there is no executable ${pkg}/${exe} in this install space`);
+    if (info.python) return this.startPythonEntryPoint(pkg, info, args);
     const id = this.nextId++;
     const proc = {
       id, pkg, exe, args: [...args], label: `${exe}-${id}`, state: 'starting', log: [], exit: null, handle: null,
@@ -202,6 +203,52 @@ export class Session {
       });
     })();
     return this.track(proc, started);
+  }
+
+  /**
+   * Start an entry point of a Python package of the install space (its
+   * console_scripts, `colcon build --wasm` packed it): Pyodide imports its module
+   * from the install space's Python packages, fetched from serve at their real
+   * paths, and runs `sys.exit(function())` as the installed script does.
+   */
+  startPythonEntryPoint(pkg, info, args) {
+    const python = this.workspace.python || {};
+    const id = this.nextId++;
+    const proc = {
+      id, pkg, exe: info.name, args: [...args], label: `${info.name}-${id}`, state: 'starting', log: [], exit: null,
+      handle: null, started: performance.now(),
+    };
+    this.processes.set(id, proc);
+    this.addLog(proc, { severity: 'SYSTEM', text: `starting ${pkg}/${info.name} (Python) ${args.join(' ')}`.trim() });
+    this.emit('processes');
+    const started = (async () => {
+      if (!python.pyodide) throw new Error(python.problem || 'this serve does not serve Pyodide: start it with --pyodide DIR');
+      await this.ready;
+      const pythonFiles = await this.pythonFiles();
+      const { spawnPython } = await import('/wasm_js/python/spawn.mjs');
+      return spawnPython(this.runtime, {
+        file: info.file, entry: info.python, args: proc.args, name: proc.label, env: this.installView().env,
+        pyodideUrl: python.pyodide, types: this.typeDocuments || [], pythonPath: python.path || [], pythonFiles,
+        onLog: ({ stream, text }) => this.addLog(proc, { stream, severity: severityOf(stream, text), text }),
+        onExit: (exit) => this.exited(proc, exit),
+        stdin: true,
+      });
+    })();
+    return this.track(proc, started);
+  }
+
+  /** The Python packages' files ({path, text}), fetched once per page. */
+  pythonFiles() {
+    if (!this._pythonFiles) {
+      const files = (this.workspace.python && this.workspace.python.files) || [];
+      this._pythonFiles = Promise.all(files.map(async ({ path, url }) => {
+        const response = await fetch(url);
+        if (!response.ok) throw new Error(`cannot load the Python module ${path}: HTTP ${response.status} for ${url}`);
+        return { path, text: await response.text() };
+      }));
+      this._pythonFiles.catch(() => { this._pythonFiles = null; });
+    }
+    return this._pythonFiles;
   }
 
   /**

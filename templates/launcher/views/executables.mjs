@@ -83,7 +83,9 @@ export class ExecutablesView {
     }, '⋯');
     item.append(
       h('div.row', {}, h('span.name', {}, exe.name),
-        h('span.size', { title: 'download size (gzip)' }, formatBytes(exe.gzip_size || exe.size)),
+        exe.python
+          ? h('span.size', { title: `Python entry point ${exe.python.module}:${exe.python.function} (Pyodide)` }, 'Python')
+          : h('span.size', { title: 'download size (gzip)' }, formatBytes(exe.gzip_size || exe.size)),
         toggle, button),
       h('div.args', {}, args,
         h('div.hint', {}, 'ROS arguments as on the command line; Enter runs it.'), error));

@@ -90,7 +90,10 @@ function spawnPythonNode(runtimeUrl, runtime, proc, plan) {
       throw new Error(`the wasm_js runtime ${runtimeUrl} has no Python nodes (python/spawn.mjs): rebuild it `
         + "with 'colcon build --wasm --packages-select wasm_js'");
     }
-    return spawnPython(runtime, { ...spec, file: proc.python, pyodideDir: plan.pyodide, types: plan.types || [] });
+    return spawnPython(runtime, {
+      ...spec, file: proc.python, entry: proc.python_entry, pythonPath: proc.python_path,
+      pyodideDir: plan.pyodide, types: plan.types || [],
+    });
   };
 }
 

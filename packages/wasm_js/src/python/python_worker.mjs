@@ -256,6 +256,9 @@ def _colcon_wasm_run(file, source, args, env):
     sys.path.insert(0, os.path.dirname(file))
     glb = {'__name__': '__main__', '__file__': file, '__builtins__': __builtins__}
     try:
+        # rclpy puts the finder of the install space's message modules on sys.meta_path:
+        # 'from std_msgs.msg import String' before 'import rclpy' works, as natively
+        import rclpy  # noqa: F401
         exec(compile(source, file, 'exec'), glb)
     except SystemExit as e:
         if e.code is None:
@@ -312,11 +315,20 @@ async function start(msg) {
     pyodide.FS.mkdirTree(target.slice(0, target.lastIndexOf('/')));
     pyodide.FS.writeFile(target, sources[i]);
   });
+  // the install space's Python packages: at their real paths, first on sys.path
+  for (const folder of msg.pythonPath || []) {
+    if (isNode) pyodide.mountNodeFS(folder, folder);
+    else pyodide.FS.mkdirTree(folder);
+  }
+  for (const { path, text } of msg.pythonFiles || []) {
+    pyodide.FS.mkdirTree(path.slice(0, path.lastIndexOf('/')));
+    pyodide.FS.writeFile(path, text);
+  }
   // the script at its real path, so that tracebacks show its lines
   pyodide.FS.mkdirTree(msg.file.slice(0, msg.file.lastIndexOf('/')) || '/');
   pyodide.FS.writeFile(msg.file, msg.source);
   pyodide.registerJsModule('_colcon_wasm_bus', busModule(client, registry, client.createContext(), settle));
-  pyodide.runPython(`import sys\nsys.path.insert(0, ${JSON.stringify(PYTHON_ROOT)})`);
+  pyodide.runPython(`import sys\nsys.path[0:0] = ${JSON.stringify([PYTHON_ROOT, ...(msg.pythonPath || [])])}`);
   pyodide.runPython(RUNNER, { filename: '<colcon-wasm python worker>' });
   const run = pyodide.globals.get('_colcon_wasm_run');
   post({ type: FromWorker.STARTED, prestartedPthreadWorkers: 0, glueFromMemory: false });

@@ -68,6 +68,14 @@ export async function checkPyodide(dir) {
  * @param {object} spec
  * @param {string} spec.file the script (absolute path); it runs as `__main__`
  * @param {string} [spec.source] its text (default: read from `file`)
+ * @param {{module: string, function: string}} [spec.entry] a console_scripts entry point of
+ *   a Python package: `file` is its installed script, and what runs is what setuptools'
+ *   script does, `sys.exit(function())` after `from module import function`
+ * @param {string[]} [spec.pythonPath] folders of Python modules, put first on sys.path
+ *   (the install space's packages, highest priority first); Node.js: the host's folders,
+ *   seen read-only at the same paths
+ * @param {Array<{path: string, text: string}>} [spec.pythonFiles] browser: the files of
+ *   those folders, written at their paths
  * @param {string[]} [spec.args] sys.argv[1:]
  * @param {Object<string, string>} [spec.env] os.environ
  * @param {string} [spec.name] a name for logs (default: the file's base name)
@@ -104,9 +112,24 @@ export async function spawnPython(runtime, spec) {
   });
   worker.postMessage({
     type: 'start', bus: runtime.bus.handle, pid, name, file, source, args: (spec.args || []).map(String), env,
-    types, stdin: stdinPipe && stdinPipe.sab, ...where,
+    types, stdin: stdinPipe && stdinPipe.sab, pythonPath: (spec.pythonPath || []).map(String),
+    pythonFiles: isNode ? [] : (spec.pythonFiles || []), ...where,
   });
   return proc;
+}
+
+/**
+ * The text of a console_scripts entry point's script: what setuptools writes,
+ * without its lookup of the distribution (the module is on sys.path).
+ */
+export function entryPointSource({ module, function: func }) {
+  const name = /^[A-Za-z_][A-Za-z0-9_]*(\.[A-Za-z_][A-Za-z0-9_]*)*$/;
+  if (!name.test(String(module)) || !name.test(String(func))) {
+    throw new BusError(Code.INVALID_ARGUMENT, `the entry point '${module}:${func}' is not 'module:function'`);
+  }
+  const [head, ...rest] = String(func).split('.');
+  const call = [head, ...rest].join('.');
+  return `import sys\nfrom ${module} import ${head}\nsys.exit(${call}())\n`;
 }
 
 /** Node.js: read the script and the type descriptions, check the Pyodide folder. */
@@ -116,7 +139,7 @@ async function nodeSpec(spec) {
   const file = path.resolve(spec.file);
   const name = spec.name || path.basename(file).replace(/\.py$/, '');
   await checkPyodide(spec.pyodideDir);
-  let source = spec.source;
+  let source = spec.entry ? entryPointSource(spec.entry) : spec.source;
   if (source === undefined) {
     try {
       source = fs.readFileSync(file, 'utf8');
@@ -139,7 +162,8 @@ async function nodeSpec(spec) {
 function browserSpec(spec) {
   const file = String(spec.file);
   const name = spec.name || file.slice(file.lastIndexOf('/') + 1).replace(/\.py$/, '');
-  if (typeof spec.source !== 'string') {
+  const source = spec.entry ? entryPointSource(spec.entry) : spec.source;
+  if (typeof source !== 'string') {
     throw new BusError(Code.INVALID_ARGUMENT, `spawnPython '${name}': in a browser, pass the script's text as source`);
   }
   if (!spec.pyodideUrl) {
@@ -147,5 +171,5 @@ function browserSpec(spec) {
       + "serve it with the page (colcon-wasm serve --pyodide DIR, or COLCON_WASM_PYODIDE; see 'colcon-wasm doctor')");
   }
   const types = (spec.types || []).filter((t) => typeof t === 'object' && t !== null);
-  return { file, name, source: spec.source, types, where: { pyodideUrl: new URL(spec.pyodideUrl, self.location.href).href } };
+  return { file, name, source, types, where: { pyodideUrl: new URL(spec.pyodideUrl, self.location.href).href } };
 }

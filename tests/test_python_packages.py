@@ -1,0 +1,153 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""
+``ament_python`` packages packed by ``colcon build --wasm`` and run in Pyodide.
+
+The fixture packages of tests/ros_fixtures (py_words: a library;
+py_chatter: a talker, a listener and a crasher as console_scripts, and a
+launch file; py_native: a C extension) are built by the real colcon on the
+demo build as an underlay (tests/demo_build.py), and run with the npm
+package ``pyodide`` of tests/js next to the C++ demo nodes. Every run is
+bounded by ``--duration`` and a subprocess timeout.
+"""
+
+import json
+import os
+from pathlib import Path
+import re
+import shutil
+import subprocess
+
+from colcon_helpers import colcon
+import demo_build
+import pytest
+
+REPO = Path(__file__).resolve().parents[1]
+FIXTURES = REPO / 'tests' / 'ros_fixtures'
+PYODIDE = REPO / 'tests' / 'js' / 'node_modules' / 'pyodide'
+
+
+def _workspace(root, names):
+    workspace = Path(root)
+    for name in names:
+        shutil.copytree(FIXTURES / name, workspace / 'src' / name)
+    return workspace
+
+
+@pytest.fixture(scope='module')
+def overlay(tmp_path_factory):
+    """py_words and py_chatter built with colcon build --wasm on the demo's install space."""
+    assert shutil.which('node'), 'Node.js 20 is needed (apt-get install nodejs)'
+    if not (PYODIDE / 'pyodide.asm.wasm').is_file():
+        pytest.skip('the npm package pyodide is missing: run `npm ci` in tests/js')
+    underlay = demo_build.demo_install()
+    workspace = _workspace(tmp_path_factory.mktemp('python_overlay'), ('py_words', 'py_chatter'))
+    colcon(workspace, 'build', '--wasm', '--wasm-underlay', str(underlay))
+    # colcon's log of every logger (the INFO lines do not reach the console)
+    return workspace, (workspace / 'log' / 'latest_build' / 'logger_all.log').read_text()
+
+
+def colcon_wasm(workspace, *args, timeout=180):
+    """Run colcon-wasm in the overlay with Pyodide from tests/js; (status, stdout and stderr)."""
+    env = dict(os.environ, COLCON_WASM_PYODIDE=str(PYODIDE))
+    result = subprocess.run([str(demo_build.venv_tool('colcon-wasm')), *map(str, args)],
+                            cwd=workspace, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                            text=True, env=env, timeout=timeout)
+    return result.returncode, result.stdout
+
+
+def test_the_build_packs_the_modules_entry_points_and_data_files(overlay):
+    workspace, log = overlay
+    install = workspace / 'install_wasm'
+    assert "Packed Python package 'py_chatter' for Pyodide (crasher, listener, talker)" in log
+    assert "Packed Python package 'py_words' for Pyodide (no entry points)" in log
+    # py_chatter's exec_depend on rclpy, which the recipe skips
+    assert "Python package 'py_chatter' uses colcon-wasm's rclpy for Pyodide in place of " \
+        "'rclpy'" in log
+    assert "Python package 'py_words' uses" not in log
+    manifest = json.loads((install / 'py_chatter' / 'share' / 'py_chatter' / 'colcon_wasm'
+                           / 'manifest.json').read_text())
+    by_name = {e['name']: e for e in manifest['executables']}
+    assert sorted(by_name) == ['crasher', 'listener', 'talker']
+    assert by_name['talker']['python'] == {'module': 'py_chatter.talker', 'function': 'main'}
+    assert by_name['talker']['js'] == 'lib/py_chatter/talker'
+    folder, = manifest['python']['path']
+    assert re.fullmatch(r'lib/python3\.\d+/site-packages', folder), folder
+    assert f'{folder}/py_chatter/talker.py' in manifest['python']['files']
+    for relative in manifest['python']['files']:
+        assert (install / 'py_chatter' / relative).is_file(), relative
+    # the data files where setup.py's data_files put them
+    assert (install / 'py_chatter' / 'share' / 'py_chatter' / 'launch'
+            / 'chatter.launch.xml').is_file()
+    assert (install / 'py_chatter' / 'share' / 'ament_index' / 'resource_index' / 'packages'
+            / 'py_chatter').is_file()
+    words = json.loads((install / 'py_words' / 'share' / 'py_words' / 'colcon_wasm'
+                        / 'manifest.json').read_text())
+    assert words['executables'] == []
+    assert f'{folder}/py_words/__init__.py' in words['python']['files']
+
+
+def test_a_packaged_talker_is_heard_by_the_cpp_listener_and_a_crash_is_contained(overlay):
+    workspace, _ = overlay
+    code, out = colcon_wasm(workspace, 'launch', '--duration', 40, 'py_chatter/talker',
+                            'demo_nodes/listener', 'py_chatter/crasher', 'demo_nodes/talker',
+                            'py_chatter/listener')
+    lines = out.splitlines()
+    # py_words, another package of the install space, gives the text
+    cpp_heard = [i for i, line in enumerate(lines) if re.match(
+        r'\[listener-2\] .*I heard: \[Hello from a Python package: \d+\]', line)]
+    py_heard = [i for i, line in enumerate(lines) if re.match(
+        r'\[listener-5\] .*\[py_package_listener\]: I heard: \[Hello World: (\d+)\] count=\1$',
+        line)]
+    assert cpp_heard, out[-6000:]
+    assert py_heard, out[-6000:]
+    tb = out.index('[crasher-3] Traceback (most recent call last):')
+    crasher = workspace / 'install_wasm' / 'py_chatter'
+    assert re.search(r'\[crasher-3\]   File "' + re.escape(str(crasher)) + r'/lib/python3\.\d+/'
+                     r'site-packages/py_chatter/crasher\.py", line 8, in explode', out[tb:]), \
+        out[tb:tb + 3000]
+    assert '[crasher-3] RuntimeError: the packaged crasher gives up' in out[tb:]
+    died = [i for i, line in enumerate(lines) if line.startswith(
+        '[ERROR] [crasher-3]: process has died [exit code 1, Python exception: RuntimeError: '
+        'the packaged crasher gives up')]
+    assert died, out[-6000:]
+    assert max(cpp_heard) > died[0] and max(py_heard) > died[0], out[-6000:]
+    assert code == 1, out[-3000:]
+
+
+def test_run_passes_ros_arguments_and_a_launch_file_of_the_package_runs_its_nodes(overlay):
+    workspace, _ = overlay
+    code, out = colcon_wasm(workspace, 'run', '--duration', 25, 'py_chatter', 'talker',
+                            '--ros-args', '-r', '__node:=renamed_talker', '-r', 'chatter:=news')
+    assert re.search(r'\[renamed_talker\]: Publishing: "Hello from a Python package: 1"', out), \
+        out[-4000:]
+    assert code == 0, out[-3000:]
+    code, out = colcon_wasm(workspace, 'launch', '--duration', 40, 'py_chatter',
+                            'chatter.launch.xml')
+    assert re.search(r'\[talker-1\] .*\[launched_talker\]: Publishing', out), out[-4000:]
+    assert re.search(r'\[listener-2\] .*\[py_package_listener\]: I heard: \[Hello from a '
+                     r'Python package: \d+\]', out), out[-4000:]
+    assert code == 0, out[-3000:]
+
+
+def test_print_plan_names_the_installed_script(overlay):
+    workspace, _ = overlay
+    code, out = colcon_wasm(workspace, 'launch', '--print-plan', 'py_chatter/listener')
+    script = workspace / 'install_wasm' / 'py_chatter' / 'lib' / 'py_chatter' / 'listener'
+    assert out.strip() == f'[listener-1] {script}', out
+    assert code == 0
+
+
+def test_a_package_with_a_c_extension_is_refused_with_its_module_named(tmp_path):
+    if shutil.which('emcc') is None and not os.environ.get('EMSDK'):
+        pytest.skip('Emscripten is not installed (apt-get install emscripten)')
+    workspace = _workspace(tmp_path, ('py_native',))
+    result = colcon(workspace, 'build', '--wasm', check=False)
+    assert result.returncode != 0
+    assert re.search(r"'py_native' installs compiled extension modules \(lib/python3\.\d+/"
+                     r'site-packages/py_native/_speedups\.[^)]*\.so\): they are built for the '
+                     r"host's CPython, and Pyodide cannot load them; skip the package for --wasm "
+                     r'\(--packages-skip py_native', result.stdout), result.stdout[-4000:]
+    assert not (workspace / 'install_wasm' / 'py_native' / 'share' / 'py_native' / 'colcon_wasm'
+                / 'manifest.json').exists()
