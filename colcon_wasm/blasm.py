@@ -7,7 +7,10 @@
 It keeps the thesis' options. Unlike the thesis' script, `-d` works (it was
 missing from that script's getopts string), a build without `-u`/`-s` builds
 the whole workspace, and every argument blasm does not know is passed to
-`colcon build`.
+`colcon build`. `-p` ("install emscripten python" in the thesis) checks that
+Pyodide, which runs the Python nodes, is installed (and says how to get it
+when not); `colcon build --wasm` packs the `ament_python` packages for it
+in every build (docs/python.md).
 """
 
 import argparse
@@ -16,11 +19,6 @@ import shlex
 import shutil
 import sys
 
-PYTHON_REFUSAL = (
-    'blasm -p (Python in the browser) is not supported: rclpy and '
-    'rosidl_generator_py need a CPython built for WebAssembly '
-    '(emscripten-forge), which colcon-wasm does not provide; build C/C++ '
-    'packages only (the recipe skips rclpy and rosidl_generator_py)')
 
 BUILD_BASE = 'build_wasm'
 INSTALL_BASE = 'install_wasm'
@@ -49,8 +47,8 @@ def create_parser():
     parser.add_argument('-i', metavar="'PKG ...'", dest='ignore',
                         help="ignore 'listed packages'")
     parser.add_argument('-p', action='store_true', dest='python',
-                        help='install emscripten python (refused: not '
-                             'supported)')
+                        help='Python nodes: check that Pyodide is installed '
+                             '(ament_python packages are packed for it)')
     parser.add_argument('-v', action='store_true', dest='verbose',
                         help='verbose')
     return parser
@@ -91,6 +89,25 @@ def clean(workspace):
             print(f'[BLASM]: removed {path}')
 
 
+def check_pyodide():
+    """
+    Say where the Pyodide that runs the Python nodes is, or how to install it.
+
+    :returns: True when it is there
+    """
+    from colcon_wasm.launch.errors import LaunchError
+    from colcon_wasm.launch.python_nodes import find_pyodide
+    from colcon_wasm.launch.python_nodes import PYODIDE_VERSION
+    try:
+        folder = find_pyodide()
+    except LaunchError as e:
+        print(f'[BLASM]: -p: {e}', file=sys.stderr)
+        return False
+    print(f'[BLASM]: Python nodes run with Pyodide {PYODIDE_VERSION} from {folder}; '
+          'colcon build --wasm packs the ament_python packages for it')
+    return True
+
+
 def main(argv=None, *, run_colcon=None):
     """
     Run blasm.
@@ -101,8 +118,7 @@ def main(argv=None, *, run_colcon=None):
     :returns: the exit code
     """
     options, extra = create_parser().parse_known_args(argv)
-    if options.python:
-        print(f'[BLASM]: {PYTHON_REFUSAL}', file=sys.stderr)
+    if options.python and not check_pyodide():
         return 2
     workspace = Path.cwd()
     if options.clean:

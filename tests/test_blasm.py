@@ -4,6 +4,7 @@
 """`blasm` keeps the thesis' options on top of `colcon build --wasm`."""
 
 import os
+from pathlib import Path
 import subprocess
 
 from colcon_helpers import copy_fixture
@@ -12,10 +13,12 @@ from colcon_helpers import tool
 from colcon_wasm.blasm import colcon_arguments
 from colcon_wasm.blasm import create_parser
 
+REPO = Path(__file__).resolve().parents[1]
 
-def blasm(workspace, *args):
+
+def blasm(workspace, *args, env=None):
     """Run the installed blasm console script."""
-    env = dict(os.environ, COLCON_HOME=str(workspace / '.colcon_home'))
+    env = dict(os.environ, COLCON_HOME=str(workspace / '.colcon_home'), **(env or {}))
     env.pop('COLCON_DEFAULTS_FILE', None)
     return subprocess.run(
         [tool('blasm')] + list(args), cwd=workspace, env=env,
@@ -40,11 +43,21 @@ def test_option_translation():
         '-DCMAKE_VERBOSE_MAKEFILE=ON']
 
 
-def test_python_is_refused(tmp_path):
-    result = blasm(tmp_path, '-p')
+def test_python_checks_for_pyodide(tmp_path):
+    pyodide = REPO / 'tests' / 'js' / 'node_modules' / 'pyodide'
+    missing = tmp_path / 'no-pyodide'
+    result = blasm(tmp_path, '-p', env={'COLCON_WASM_PYODIDE': str(missing)})
     assert result.returncode == 2
-    assert 'blasm -p (Python in the browser) is not supported' in \
-        result.stdout
+    assert f"[BLASM]: -p: Python nodes need Pyodide 314.0.8, and '{missing}' " \
+        '($COLCON_WASM_PYODIDE) lacks pyodide.mjs' in result.stdout
+    assert 'npm install --prefix' in result.stdout
+    if not (pyodide / 'pyodide.asm.wasm').is_file():
+        return  # the rest needs tests/js's npm ci (tests/test_pyodide_nodes.py says so)
+    result = blasm(tmp_path, '-p', '-u', 'x', env={'COLCON_WASM_PYODIDE': str(pyodide)})
+    assert f'[BLASM]: Python nodes run with Pyodide 314.0.8 from {pyodide}; colcon build ' \
+        '--wasm packs the ament_python packages for it' in result.stdout
+    assert 'is not a workspace directory' in result.stdout  # then it builds as without -p
+    assert result.returncode == 1
 
 
 def test_not_a_workspace(tmp_path):

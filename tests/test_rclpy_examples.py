@@ -39,7 +39,7 @@ EXAMPLES = {
 
 @pytest.fixture(scope='module')
 def overlay():
-    """The rclpy examples packed on the rclcpp build (cached, keyed by its inputs)."""
+    """Pack the rclpy examples on the rclcpp build (cached, keyed by its inputs)."""
     assert shutil.which('node'), 'Node.js 20 is needed (apt-get install nodejs)'
     if not (PYODIDE / 'pyodide.asm.wasm').is_file():
         pytest.skip('the npm package pyodide is missing: run `npm ci` in tests/js')
@@ -69,7 +69,7 @@ def test_python_and_cpp_minimal_publishers_and_subscribers_hear_each_other(overl
         'examples_rclcpp_minimal_publisher/publisher_member_function',
         'examples_rclpy_minimal_subscriber/subscriber_member_function')
     # Python -> C++, on 'topic' (std_msgs/msg/String)
-    cpp_heard = re.findall(r"\[subscriber_member_function-2\] \[INFO\] \[[\d.]+\] "
+    cpp_heard = re.findall(r'\[subscriber_member_function-2\] \[INFO\] \[[\d.]+\] '
                            r"\[minimal_subscriber\]: I heard: 'Hello World: (\d+)'", out)
     # C++ -> Python
     py_heard = re.findall(r'\[subscriber_member_function-4\] \[INFO\] \[[\d.]+\] '
