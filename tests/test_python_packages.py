@@ -151,3 +151,37 @@ def test_a_package_with_a_c_extension_is_refused_with_its_module_named(tmp_path)
                      r'\(--packages-skip py_native', result.stdout), result.stdout[-4000:]
     assert not (workspace / 'install_wasm' / 'py_native' / 'share' / 'py_native' / 'colcon_wasm'
                 / 'manifest.json').exists()
+
+
+def test_the_page_lists_a_packaged_entry_point_and_runs_it_beside_a_cpp_listener(overlay):
+    """The served page lists the entry points, serves the modules, and Run starts one."""
+    from served_page import explain_page
+    from served_page import ServedPage
+    import urllib.parse
+    import urllib.request
+    workspace, _ = overlay
+    steps = [
+        {'start': 'listener', 'pkg': 'demo_nodes', 'exe': 'listener'},
+        {'start': 'py_talker', 'pkg': 'py_chatter', 'exe': 'talker'},
+        {'wait': 'listener', 'text': 'I heard: [Hello from a Python package: 3]',
+         'timeoutMs': 90000},
+        {'stop': 'py_talker'},
+    ]
+    with ServedPage(workspace / 'install_wasm', args=['--pyodide', PYODIDE]) as page:
+        listing_url = urllib.parse.urljoin(page.url, '/workspace.json')
+        with urllib.request.urlopen(listing_url, timeout=30) as response:
+            listing = json.load(response)
+        result = page.run(steps, timeout_ms=180000)
+    chatter, = [p for p in listing['packages'] if p['name'] == 'py_chatter']
+    talker, = [e for e in chatter['executables'] if e['name'] == 'talker']
+    assert talker['python'] == {'module': 'py_chatter.talker', 'function': 'main'}
+    assert talker['file'] == str(workspace / 'install_wasm' / 'py_chatter' / 'lib' /
+                                 'py_chatter' / 'talker')
+    served = {f['path'] for f in listing['python']['files']}
+    assert any(p.endswith('/site-packages/py_words/__init__.py') for p in served), served
+    assert 'demo_nodes' in {p['name'] for p in listing['packages']}  # the underlay's
+    assert result['ok'], explain_page(result)
+    talked = [line for line in result['logs']['py_talker']
+              if '[py_package_talker]: Publishing: "Hello from a Python package' in line]
+    assert talked, result['logs']['py_talker']
+    assert result['states']['py_talker'] == 'stopped', result['states']
