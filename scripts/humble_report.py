@@ -29,6 +29,7 @@ from colcon_wasm.recipe import load_recipe  # noqa: E402
 from colcon_wasm.toolchain import find_emscripten  # noqa: E402
 
 WASM_TYPES = ('cmake', 'ros.cmake', 'ros.ament_cmake')
+PYTHON_TYPES = ('ros.ament_python',)  # packed for Pyodide (colcon_wasm/python_package.py)
 
 
 def list_packages(workspace):
@@ -64,12 +65,14 @@ def classify(name, kind, recipe, results):
     reason = recipe.skip_reason(name)
     if reason:
         return 'skipped', reason
-    if kind not in WASM_TYPES and name not in recipe.host_tools:
-        return 'skipped', f'pure Python ({kind}): not built to WebAssembly'
+    if kind not in WASM_TYPES and kind not in PYTHON_TYPES and name not in recipe.host_tools:
+        return 'skipped', f'Python ({kind}): only ament_python packages are packed for Pyodide'
     if name in results:
         if results[name] == 0:
-            if kind not in WASM_TYPES:
+            if name in recipe.host_tools:
                 return 'built', 'host tool (Python, used by CMake)'
+            if kind in PYTHON_TYPES:
+                return 'built', 'packed for Pyodide'
             return 'built', ''
         return 'failed', f'exit code {results[name]}'
     return 'not in set', 'not needed by the packages this build asked for'
