@@ -8,23 +8,13 @@
 // a bag and publishes what serve sends back in its recorded timing, with
 // pause, step, seek and rate.
 
+// /clock as the Node.js player publishes it (one definition in the runtime)
+import { CLOCK_QOS, clockMessage } from '/wasm_js/bridges/record/clock.mjs';
+
 const RECORD_DEPTH = 1000;
 const UPLOAD_SLICE = 1 << 20;
 /** Bytes waiting for serve before the recorder drops (and counts) messages. */
 const MAX_BUFFERED = 256 * 1024 * 1024;
-
-/** The QoS of /clock, as the Node.js player's: reliable matches reliable and best-effort clock subscriptions. */
-const CLOCK_QOS = { history: 'keep_last', depth: 1, reliability: 'reliable', durability: 'volatile' };
-
-/** rosgraph_msgs/msg/Clock in CDR: the encapsulation header, int32 sec, uint32 nanosec. */
-function clockMessage(ns) {
-  const out = new Uint8Array(12);
-  const view = new DataView(out.buffer);
-  out[1] = 1;
-  view.setInt32(4, Number(ns / 1000000000n), true);
-  view.setUint32(8, Number(ns % 1000000000n), true);
-  return out;
-}
 
 /** A rosbag2 topic QoS for a subscription that matches the offers (ros2 bag record's rule). */
 function recordQos(offers) {

@@ -15,6 +15,7 @@
 
 import { performance } from 'node:perf_hooks';
 
+import { CLOCK_QOS, clockMessage } from './clock.mjs';
 import { FrameReader, Kind } from './frames.mjs';
 
 /** Messages read ahead of their time; the pipe is paused beyond this. */
@@ -22,19 +23,7 @@ const HIGH_WATER = 4000;
 const LOW_WATER = 1000;
 /** Publish calls to the tools worker in flight before waiting for the oldest. */
 const IN_FLIGHT = 64;
-/** The QoS of /clock: reliable matches reliable and best-effort clock subscriptions. */
-const CLOCK_QOS = { history: 'keep_last', depth: 1, reliability: 'reliable', durability: 'volatile' };
-
 const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
-
-function clockMessage(ns) {
-  const out = new Uint8Array(12);
-  const view = new DataView(out.buffer);
-  out[1] = 1; // CDR little endian
-  view.setInt32(4, Number(ns / 1000000000n), true);
-  view.setUint32(8, Number(ns % 1000000000n), true);
-  return out;
-}
 
 export class Player {
   /**
