@@ -53,22 +53,13 @@ def make_plan(values, install_base):
     return plan_items(others)
 
 
-def find_pyodide(option):
-    """Find the Pyodide folder (``colcon_wasm.launch.python_nodes.find_pyodide``)."""
-    from colcon_wasm.launch.python_nodes import find_pyodide as find
-    return find(option)
-
-
-def _add_python_nodes(description, python, install_space, bases, pyodide, print_plan):
+def _add_python_nodes(description, python, install_space, bases):
     from colcon_wasm.launch.install_view import ament_prefixes
     from colcon_wasm.launch.install_view import view_bases
-    from colcon_wasm.launch.python_nodes import find_pyodide
     from colcon_wasm.launch.python_nodes import python_processes
     bases = view_bases(install_space) if bases is None else [Path(b) for b in bases]
     processes = description['processes']
     processes += python_processes(python, ament_prefixes(bases), first_index=len(processes) + 1)
-    if not print_plan:
-        description['pyodide'] = str(find_pyodide(pyodide))
 
 
 def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, command,
@@ -98,9 +89,10 @@ def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, com
                                 stdin=stdin, load_timeout=load_timeout, bases=bases)
         description.update(bridges or {}, command=command)
         if python:
-            _add_python_nodes(description, python, install_space, bases, pyodide, print_plan)
-        elif any(p.get('python') for p in description['processes']) and not print_plan:
-            # entry points of Python packages
+            _add_python_nodes(description, python, install_space, bases)
+        if not print_plan and any(p.get('python') for p in description['processes']):
+            # scripts of --python, and entry points of Python packages
+            from colcon_wasm.launch.python_nodes import find_pyodide
             description['pyodide'] = str(find_pyodide(pyodide))
     except (LaunchError, InstallSpaceError) as e:
         print(f'{command}: {e}', file=err)

@@ -169,19 +169,16 @@ class Site:
         ``path``: the folders (real paths, highest priority first), put on
         ``sys.path``; ``files``: each file with its real path and its URL.
         """
-        folders = []
         files = []
         for package in self.install_space.packages().values():
             try:
                 manifest = package.manifest or {}
-                own = package.python_path()
             except Exception:  # a broken manifest is reported by workspace()
                 continue
-            folders += [str(f) for f in own if str(f) not in folders]
             for relative in (manifest.get('python') or {}).get('files', []):
                 files.append({'path': str(package.prefix / relative),
                               'url': self._url(package, package.prefix / relative)})
-        return {'path': folders, 'files': files}
+        return {'path': [str(f) for f in self.install_space.python_path()], 'files': files}
 
     def _base_of(self, package):
         """Return the install base (the install space's, or an underlay's) of a package."""

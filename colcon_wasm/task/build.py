@@ -146,19 +146,7 @@ class WasmBuildTask(TaskExtensionPoint):
 
     async def _build_host_tool(self, stock, plan):
         """Build a recipe host tool with its stock task, unless up to date."""
-        args = self.context.args
-        inputs = build_inputs(
-            args=args, source=Path(args.path), patches=[],
-            settings={'host_tool': plan.original_type},
-            dependencies=self.context.dependencies)
-        if self._up_to_date(inputs):
-            return 0
-        stock.set_context(context=self.context)
-        rc = await stock.build()
-        if rc:
-            return rc
-        write_stamp(args.build_base, inputs)
-        return 0
+        return await self._build_with_stock_task(stock, {'host_tool': plan.original_type})
 
     async def _build_python_package(self, stock, plan):
         """
@@ -167,30 +155,45 @@ class WasmBuildTask(TaskExtensionPoint):
         Its modules run in Pyodide as they are installed; the manifest
         (:mod:`colcon_wasm.python_package`) lists its entry points.
         """
-        pkg = self.context.pkg
+        return await self._build_with_stock_task(
+            stock, {'python_package': plan.original_type, 'recipe': plan.recipe.describe()},
+            then=lambda: self._pack_python_package(plan))
+
+    async def _build_with_stock_task(self, stock, settings, then=None):
+        """
+        Build with the stock task alone (no toolchain), unless up to date.
+
+        :param settings: what the build depends on besides the sources (in its stamp)
+        :param then: run after the stock build; returns the exit code
+        """
         args = self.context.args
         inputs = build_inputs(
-            args=args, source=Path(args.path), patches=[],
-            settings={'python_package': plan.original_type,
-                      'recipe': plan.recipe.describe()},
+            args=args, source=Path(args.path), patches=[], settings=settings,
             dependencies=self.context.dependencies)
         if self._up_to_date(inputs):
             return 0
         stock.set_context(context=self.context)
         rc = await stock.build()
+        if not rc and then is not None:
+            rc = then()
         if rc:
             return rc
+        write_stamp(args.build_base, inputs)
+        return 0
+
+    def _pack_python_package(self, plan):
+        """Write the manifest of an installed ``ament_python`` package; the exit code."""
+        pkg = self.context.pkg
         self.progress('wasm')
         try:
             manifest = pack_python_package(
                 pkg_name=pkg.name, pkg_version=pkg.metadata.get('version'),
-                install_prefix=args.install_base, recipe=plan.recipe.describe())
+                install_prefix=self.context.args.install_base, recipe=plan.recipe.describe())
         except ColconWasmError as e:
             logger.error(exit_message(e))
             return 1
         names = ', '.join(e['name'] for e in manifest['executables']) or 'no entry points'
         logger.info(f"Packed Python package '{pkg.name}' for Pyodide ({names})")
-        write_stamp(args.build_base, inputs)
         return 0
 
     def _up_to_date(self, inputs):

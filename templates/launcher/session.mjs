@@ -181,28 +181,10 @@ export class Session {
    * Listed, logged and stopped like an executable.
    */
   startPython(name, source, args = [], { stdin = false } = {}) {
-    const python = this.workspace.python || {};
-    const id = this.nextId++;
     const exe = name.replace(/\.py$/, '');
-    const proc = {
-      id, pkg: 'python', exe, args: [...args], label: `${exe}-${id}`, state: 'starting', log: [], exit: null, handle: null,
-      started: performance.now(),
-    };
-    this.processes.set(id, proc);
-    this.addLog(proc, { severity: 'SYSTEM', text: `starting Python ${name} ${args.join(' ')}`.trim() });
-    this.emit('processes');
-    const started = (async () => {
-      if (!python.pyodide) throw new Error(python.problem || 'this serve does not serve Pyodide: start it with --pyodide DIR');
-      await this.ready;
-      const { spawnPython } = await import('/wasm_js/python/spawn.mjs');
-      return spawnPython(this.runtime, {
-        file: `/python/${name.endsWith('.py') ? name : `${name}.py`}`, source, args: proc.args, name: proc.label,
-        env: this.installView().env, pyodideUrl: python.pyodide, types: this.typeDocuments || [], stdin,
-        onLog: ({ stream, text }) => this.addLog(proc, { stream, severity: severityOf(stream, text), text }),
-        onExit: (exit) => this.exited(proc, exit),
-      });
-    })();
-    return this.track(proc, started);
+    return this.spawnPythonProcess('python', exe, args, `starting Python ${name} ${args.join(' ')}`, async () => ({
+      file: `/python/${name.endsWith('.py') ? name : `${name}.py`}`, source, stdin,
+    }));
   }
 
   /**
@@ -213,25 +195,38 @@ export class Session {
    */
   startPythonEntryPoint(pkg, info, args) {
     const python = this.workspace.python || {};
+    return this.spawnPythonProcess(pkg, info.name, args, `starting ${pkg}/${info.name} (Python) ${args.join(' ')}`,
+      async () => ({
+        file: info.file, entry: info.python, pythonPath: python.path || [], pythonFiles: await this.pythonFiles(),
+        stdin: true,
+      }));
+  }
+
+  /**
+   * List, log and start one Python process: `spec()` gives what is its own
+   * (file, source or entry, ...); Pyodide, the types, the environment and the
+   * log and exit handlers are every Python process' of the page.
+   */
+  spawnPythonProcess(pkg, exe, args, startText, spec) {
+    const python = this.workspace.python || {};
     const id = this.nextId++;
     const proc = {
-      id, pkg, exe: info.name, args: [...args], label: `${info.name}-${id}`, state: 'starting', log: [], exit: null,
-      handle: null, started: performance.now(),
+      id, pkg, exe, args: [...args], label: `${exe}-${id}`, state: 'starting', log: [], exit: null, handle: null,
+      started: performance.now(),
     };
     this.processes.set(id, proc);
-    this.addLog(proc, { severity: 'SYSTEM', text: `starting ${pkg}/${info.name} (Python) ${args.join(' ')}`.trim() });
+    this.addLog(proc, { severity: 'SYSTEM', text: startText.trim() });
     this.emit('processes');
     const started = (async () => {
       if (!python.pyodide) throw new Error(python.problem || 'this serve does not serve Pyodide: start it with --pyodide DIR');
       await this.ready;
-      const pythonFiles = await this.pythonFiles();
+      const own = await spec();
       const { spawnPython } = await import('/wasm_js/python/spawn.mjs');
       return spawnPython(this.runtime, {
-        file: info.file, entry: info.python, args: proc.args, name: proc.label, env: this.installView().env,
-        pyodideUrl: python.pyodide, types: this.typeDocuments || [], pythonPath: python.path || [], pythonFiles,
+        ...own, args: proc.args, name: proc.label, env: this.installView().env, pyodideUrl: python.pyodide,
+        types: this.typeDocuments || [],
         onLog: ({ stream, text }) => this.addLog(proc, { stream, severity: severityOf(stream, text), text }),
         onExit: (exit) => this.exited(proc, exit),
-        stdin: true,
       });
     })();
     return this.track(proc, started);

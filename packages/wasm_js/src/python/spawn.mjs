@@ -127,9 +127,8 @@ export function entryPointSource({ module, function: func }) {
   if (!name.test(String(module)) || !name.test(String(func))) {
     throw new BusError(Code.INVALID_ARGUMENT, `the entry point '${module}:${func}' is not 'module:function'`);
   }
-  const [head, ...rest] = String(func).split('.');
-  const call = [head, ...rest].join('.');
-  return `import sys\nfrom ${module} import ${head}\nsys.exit(${call}())\n`;
+  // 'module:Class.method' imports Class
+  return `import sys\nfrom ${module} import ${String(func).split('.')[0]}\nsys.exit(${func}())\n`;
 }
 
 /** Node.js: read the script and the type descriptions, check the Pyodide folder. */
