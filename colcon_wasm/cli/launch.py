@@ -15,6 +15,8 @@ from colcon_wasm.launch.foxglove import foxglove_plan
 from colcon_wasm.launch.install_space import InstallSpaceError
 from colcon_wasm.launch.rosbridge import add_rosbridge_arguments
 from colcon_wasm.launch.rosbridge import bridge_plan
+from colcon_wasm.launch.zenoh import add_zenoh_arguments
+from colcon_wasm.launch.zenoh import zenoh_plan
 from colcon_wasm.launch.runner import DEFAULT_LOAD_TIMEOUT
 from colcon_wasm.record.session import add_play_arguments
 from colcon_wasm.record.session import add_record_arguments
@@ -52,6 +54,7 @@ def add_runtime_arguments(parser):
              'else the one colcon-wasm doctor names)')
     add_rosbridge_arguments(parser)
     add_foxglove_arguments(parser)
+    add_zenoh_arguments(parser)
     add_record_arguments(parser)
 
 
@@ -76,6 +79,7 @@ class LaunchCommand(CliExtensionPoint):
                 else LaunchPlan()
             bridges = bridge_plan(args, err=sys.stderr)
             bridges.update(foxglove_plan(args, err=sys.stderr))
+            bridges.update(zenoh_plan(args))
             bags = bag_plan(args)
         except (LaunchError, InstallSpaceError) as e:
             print(f'colcon-wasm launch: {e}', file=sys.stderr)

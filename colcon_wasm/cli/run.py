@@ -14,6 +14,7 @@ from colcon_wasm.launch import NodeProcess
 from colcon_wasm.launch.command import execute
 from colcon_wasm.launch.foxglove import foxglove_plan
 from colcon_wasm.launch.rosbridge import bridge_plan
+from colcon_wasm.launch.zenoh import zenoh_plan
 from colcon_wasm.record.session import bag_plan
 
 
@@ -44,6 +45,7 @@ class RunCommand(CliExtensionPoint):
         try:
             bridges = bridge_plan(args, err=sys.stderr)
             bridges.update(foxglove_plan(args, err=sys.stderr))
+            bridges.update(zenoh_plan(args))
             bags = bag_plan(args)
         except LaunchError as e:
             print(f'colcon-wasm run: {e}', file=sys.stderr)

@@ -18,6 +18,7 @@ from colcon_wasm.launch.runner import find_launch_file
 from colcon_wasm.launch.runner import host_plan
 from colcon_wasm.launch.runner import LAUNCH_FILE_SUFFIXES
 from colcon_wasm.launch.runner import run_host
+from colcon_wasm.launch.zenoh import resolve_gateway_module
 
 
 def make_plan(values, install_base):
@@ -88,6 +89,7 @@ def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, com
         description = host_plan(plan, install_space, duration=duration, echo=echo,
                                 stdin=stdin, load_timeout=load_timeout, bases=bases)
         description.update(bridges or {}, command=command)
+        resolve_gateway_module(description, install_space)
         if python:
             _add_python_nodes(description, python, install_space, bases)
         if not print_plan and any(p.get('python') for p in description['processes']):

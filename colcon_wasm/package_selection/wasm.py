@@ -77,6 +77,10 @@ NEEDED_CATEGORIES = ('build', 'run')
 """The bundled package that builds rclcpp_components' stock containers again."""
 CONTAINERS_PACKAGE = 'colcon_wasm_component_containers'
 
+"""The bundled package of the Zenoh gateway, built with the package it needs."""
+GATEWAY_PACKAGE = 'zenoh_wasm_gateway'
+GATEWAY_NEEDS = 'zenoh_pico'
+
 
 class WasmDependencyPackageSelection(PackageSelectionExtensionPoint):
     """Add the recipe's extra dependencies before the user's selection."""
@@ -394,11 +398,14 @@ def _trim_unused_bundled(decorators, requested=()):
     Build bundled packages only when a selected package needs them.
 
     Bundled packages the user names (`--packages-up-to wasm_cpp`) are kept,
-    with what they depend on.
+    with what they depend on. The Zenoh gateway is built when zenoh-pico is
+    (`zenoh_pico` selected): no package depends on it, `--zenoh` uses it.
     """
     selected = [d for d in decorators if d.selected]
     if all(is_bundled(d.descriptor) for d in selected):
         return  # the user selected bundled packages only
+    if any(d.descriptor.name == GATEWAY_NEEDS for d in selected):
+        requested = set(requested) | {GATEWAY_PACKAGE}
     recursive = {d.descriptor.name: {str(n) for n in d.recursive_dependencies}
                  for d in selected}
     needed = set(requested)

@@ -110,7 +110,7 @@ async function main() {
   const registry = loadRegistry(plan.types || []);
   // the rosbridge server / client (--rosbridge, --rosbridge-connect), before any process
   let bridges = null;
-  if (plan.rosbridge || plan.rosbridge_connect || plan.foxglove) {
+  if (plan.rosbridge || plan.rosbridge_connect || plan.foxglove || plan.zenoh) {
     const { startBridges } = await import('../bridges/rosbridge/launch.mjs');
     try {
       bridges = await startBridges(plan, runtime, registry, { out, err });

@@ -7,7 +7,8 @@
  * limits}) and the client to a remote rosbridge server
  * (`plan.rosbridge_connect`: {url, token, allow, deny, limits}), started on
  * the launch's Runtime before its processes; and the Foxglove server
- * (`plan.foxglove`, ../foxglove/launch.mjs).
+ * (`plan.foxglove`, ../foxglove/launch.mjs); and the Zenoh gateway
+ * (`plan.zenoh`, ../zenoh/launch.mjs).
  *
  * @module bridges/rosbridge/launch
  */
@@ -51,6 +52,10 @@ export async function startBridges(plan, runtime, registry, { out, err }) {
   if (plan.foxglove) {
     const { startFoxglove } = await import('../foxglove/launch.mjs');
     closers.push(await startFoxglove(plan.foxglove, runtime, registry, { out, err }));
+  }
+  if (plan.zenoh) {
+    const { startZenoh } = await import('../zenoh/launch.mjs');
+    closers.push(await startZenoh(plan.zenoh, runtime, registry, { out, err }));
   }
   return {
     close: async () => {

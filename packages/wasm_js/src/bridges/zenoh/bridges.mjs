@@ -1,0 +1,247 @@
+// Copyright 2026 colcon-wasm contributors
+// Licensed under the Apache License, Version 2.0
+
+/**
+ * What the Zenoh gateway (gateway.mjs) carries, one object per topic or
+ * service and direction, each restarted on a new session:
+ * - TopicOut: local publishers -> a Zenoh publisher on the rmw_zenoh key;
+ *   each sample carries the attachment (the local publisher's sequence
+ *   number, source time and gid). While there is no session, RELIABLE
+ *   messages wait (bounded in bytes, oldest dropped and counted), sent in
+ *   order once the session is back; BEST_EFFORT ones are counted as lost.
+ * - TopicIn: local subscriptions <- a Zenoh subscriber; CDR bytes published
+ *   locally by the gateway's node.
+ * - ServiceServed: a local server answers rmw_zenoh clients' queries.
+ * - ServiceProxied: local clients reach a remote rmw_zenoh server through a
+ *   local server of the gateway's node.
+ *
+ * @module bridges/zenoh/bridges
+ */
+
+import { dataKey, decodeAttachment, encodeAttachment, gidBytes, nowNs } from './keys.mjs';
+
+/** Local publishers' messages, to Zenoh. */
+export class TopicOut {
+  constructor(gateway, topic, { type, publishers }) {
+    this.gateway = gateway;
+    this.topic = topic;
+    this.type = type;
+    this.publishers = publishers;
+    this.key = dataKey(gateway.domain, topic, type);
+    this.queue = [];
+    this.queuedBytes = 0;
+    this.sequences = new Map(); // local publisher gid -> last sequence sent
+    this.zenoh = null;
+    this.stop = null;
+    const qos = publishers.map((e) => e.qos || {});
+    this.reliable = qos.some((q) => q.reliability !== 'best_effort');
+    const keepAll = qos.some((q) => q.history === 'keep_all');
+    const tapQos = {
+      history: keepAll ? 'keep_all' : 'keep_last', depth: Math.max(100, ...qos.map((q) => q.depth || 0)),
+      reliability: this.reliable ? 'reliable' : 'best_effort',
+      durability: qos.length && qos.every((q) => q.durability === 'transient_local') ? 'transient_local' : 'volatile',
+    };
+    gateway.link.listen(topic, type, (batch) => this._local(batch), tapQos).then((stop) => {
+      if (this.closed) stop();
+      else this.stop = stop;
+    }, (e) => gateway.log('error', `cannot bridge ${topic} to Zenoh: ${e.message}`));
+  }
+
+  /** Declare the Zenoh publisher on a (new) session and send what waited. */
+  attach(session) {
+    this.zenoh = null;
+    try {
+      this.zenoh = session.publisher(this.key, { reliable: this.reliable });
+    } catch (error) {
+      this.gateway.log('error', `cannot publish ${this.topic} on Zenoh: ${error.message}`);
+      return;
+    }
+    const waiting = this.queue;
+    this.queue = [];
+    this.queuedBytes = 0;
+    for (const m of waiting) this._put(m);
+  }
+
+  detach() {
+    this.zenoh = null;
+  }
+
+  _local(batch) {
+    for (const m of batch) {
+      const gid = this.gateway.gidHex(m.info.publisherGid);
+      const seq = (this.sequences.get(gid) || 0) + 1;
+      this.sequences.set(gid, seq);
+      const entry = { data: m.data, seq, timeNs: BigInt(Math.round(m.info.sourceTime * 1e6)), gid };
+      if (this.zenoh && this.gateway.session && this.gateway.session.up) this._put(entry);
+      else this._wait(entry);
+    }
+  }
+
+  _put(entry) {
+    const ret = this.zenoh.put(entry.data, encodeAttachment(entry.seq, entry.timeNs, gidBytes(entry.gid)));
+    if (ret === 0) this.gateway.counters.sent += 1;
+    else this._wait(entry);
+  }
+
+  _wait(entry) {
+    if (!this.reliable) {
+      this.gateway.counters.lost += 1;
+      return;
+    }
+    const limit = this.gateway.limits.queueBytes;
+    this.queue.push(entry);
+    this.queuedBytes += entry.data.length;
+    while (this.queuedBytes > limit && this.queue.length) {
+      const old = this.queue.shift();
+      this.queuedBytes -= old.data.length;
+      this.gateway.counters.lost += 1;
+    }
+    this.gateway.counters.queued += 1;
+  }
+
+  close() {
+    this.closed = true;
+    if (this.stop) this.stop();
+    if (this.zenoh) this.zenoh.close();
+    this.zenoh = null;
+  }
+}
+
+/** Remote publishers' messages, to local subscriptions. */
+export class TopicIn {
+  constructor(gateway, topic, { type, qos }) {
+    this.gateway = gateway;
+    this.topic = topic;
+    this.type = type;
+    this.key = dataKey(gateway.domain, topic, type);
+    this.zenoh = null;
+    this.ready = gateway.link.publisher(topic, type, qos);
+    this.ready.then((p) => { if (this.closed) p.release(); }, (e) => gateway.log('error', `cannot publish ${topic} locally: ${e.message}`));
+    this.noAttachment = 0;
+  }
+
+  attach(session) {
+    this.zenoh = null;
+    try {
+      this.zenoh = session.subscribe(this.key, (sample) => this._sample(sample));
+    } catch (error) {
+      this.gateway.log('error', `cannot subscribe to ${this.topic} on Zenoh: ${error.message}`);
+    }
+  }
+
+  detach() {
+    this.zenoh = null;
+  }
+
+  _sample(sample) {
+    if (sample.kind !== 'put' || this.closed) return;
+    try {
+      decodeAttachment(sample.attachment);
+    } catch (error) {
+      // rmw_zenoh drops samples without its attachment; so does the gateway, and says so once per topic
+      this.gateway.counters.malformed += 1;
+      if (!this.noAttachment++) this.gateway.log('warning', `dropping a sample on ${this.topic} from Zenoh: ${error.message}`);
+      return;
+    }
+    this.gateway.counters.received += 1;
+    this.ready.then((p) => p.publish(sample.payload)).catch((e) => this.gateway.log('error', `cannot publish ${this.topic} locally: ${e.message}`));
+  }
+
+  close() {
+    this.closed = true;
+    if (this.zenoh) this.zenoh.close();
+    this.ready.then((p) => p.release(), () => {});
+  }
+}
+
+/** A local service server, answering rmw_zenoh clients. */
+export class ServiceServed {
+  constructor(gateway, service, { type }) {
+    this.gateway = gateway;
+    this.service = service;
+    this.type = type;
+    this.key = dataKey(gateway.domain, service, type);
+    this.zenoh = null;
+  }
+
+  attach(session) {
+    this.zenoh = null;
+    try {
+      this.zenoh = session.queryable(this.key, (query) => this._query(query));
+    } catch (error) {
+      this.gateway.log('error', `cannot serve ${this.service} on Zenoh: ${error.message}`);
+    }
+  }
+
+  detach() {
+    this.zenoh = null;
+  }
+
+  async _query(query) {
+    let request;
+    try {
+      request = decodeAttachment(query.attachment);
+    } catch (error) {
+      this.gateway.counters.malformed += 1;
+      this.gateway.log('warning', `refusing a call of ${this.service} from Zenoh: ${error.message}`);
+      query.drop();
+      return;
+    }
+    try {
+      const response = await this.gateway.link.call(this.service, this.type, query.payload, this.gateway.limits.callTimeoutMs);
+      query.reply(this.key, response, encodeAttachment(request.sequence, nowNs(), request.gid));
+      this.gateway.counters.calls += 1;
+    } catch (error) {
+      this.gateway.log('warning', `a call of ${this.service} from Zenoh failed: ${error.message}`);
+      query.drop();
+    }
+  }
+
+  close() {
+    if (this.zenoh) this.zenoh.close();
+    this.zenoh = null;
+  }
+}
+
+/** A remote rmw_zenoh server, offered to local clients by the gateway's node. */
+export class ServiceProxied {
+  constructor(gateway, service, { type }) {
+    this.gateway = gateway;
+    this.service = service;
+    this.type = type;
+    this.key = dataKey(gateway.domain, service, type);
+    this.sequence = 0n;
+    this.gid = gateway.randomGid();
+    this.server = gateway.link.serve(service, type, (requests) => { for (const r of requests) this._request(r); });
+    this.server.catch((e) => gateway.log('error', `cannot offer ${service} locally: ${e.message}`));
+  }
+
+  attach() {}
+
+  detach() {}
+
+  async _request(request) {
+    const server = await this.server;
+    const session = this.gateway.session;
+    if (!session || !session.up) {
+      this.gateway.log('warning', `a local call of ${this.service} waits for no one: the Zenoh session is down`);
+      return;
+    }
+    this.sequence += 1n;
+    const replies = await session.get(this.key, {
+      payload: request.data, attachment: encodeAttachment(this.sequence, nowNs(), this.gid),
+      timeoutMs: this.gateway.limits.callTimeoutMs,
+    });
+    const ok = replies.find((r) => r.ok);
+    if (!ok) {
+      this.gateway.log('warning', `no rmw_zenoh server answered a call of ${this.service}`);
+      return;
+    }
+    this.gateway.counters.calls += 1;
+    await server.respond(request.id, ok.payload);
+  }
+
+  close() {
+    this.server.then((s) => s.close(), () => {});
+  }
+}
