@@ -2,8 +2,10 @@
 # Licensed under the Apache License, Version 2.0
 
 """
-The Zenoh gateway (`colcon-wasm launch --zenoh`) against a real Zenoh router
-and real Zenoh peers playing rmw_zenoh participants (tests/zenoh_peers.py).
+The Zenoh gateway (`colcon-wasm launch --zenoh`) against a real Zenoh router.
+
+The router and the Zenoh peers that play rmw_zenoh participants are
+eclipse-zenoh's (tests/zenoh_peers.py).
 
 zenoh-pico 1.9.0 comes from the corpus snapshot ($COLCON_WASM_CORPUS,
 src/eclipse-zenoh/zenoh-pico), unmodified: `colcon build --wasm` builds it
@@ -34,7 +36,7 @@ CONNECTED = re.compile(r'connected to the Zenoh router at (\S+) \(session ([0-9a
 
 
 def zenoh_pico_source():
-    """The corpus' zenoh-pico 1.9.0 (unpacked once per snapshot), or skip saying what is missing."""
+    """Return the corpus' zenoh-pico 1.9.0 (unpacked once), or skip saying what is missing."""
     if not (humble_build.corpus_snapshot() / 'src.tar.xz').is_file():
         pytest.skip(f'corpus snapshot not found at {humble_build.corpus_snapshot()} '
                     '(set COLCON_WASM_CORPUS): it holds zenoh-pico')
@@ -46,7 +48,7 @@ def zenoh_pico_source():
 
 @pytest.fixture(scope='module')
 def install(tmp_path_factory):
-    """The overlay with zenoh-pico and the gateway, on the demo build."""
+    """Build the overlay with zenoh-pico and the gateway, on the demo build."""
     pytest.importorskip('zenoh', reason='eclipse-zenoh is missing: pip install -e .[test]')
     source = zenoh_pico_source()
     underlay = demo_build.demo_install()
@@ -55,8 +57,9 @@ def install(tmp_path_factory):
     # (colcon() checks that src/ is byte-identical after the build)
     colcon(workspace, 'build', '--wasm', '--wasm-underlay', str(underlay))
     # zenoh-pico writes its config.h at configure time: into the patched copy, not src/
-    assert (workspace / 'src' / 'zenoh-pico' / 'include' / 'zenoh-pico' / 'config.h').read_bytes() \
-        == (source / 'include' / 'zenoh-pico' / 'config.h').read_bytes()
+    config = Path('include') / 'zenoh-pico' / 'config.h'
+    assert (workspace / 'src' / 'zenoh-pico' / config).read_bytes() == \
+        (source / config).read_bytes()
     module = workspace / 'install_wasm' / 'zenoh_wasm_gateway' / 'share' / 'zenoh_wasm_gateway'
     assert (module / 'zenoh_session.mjs').is_file() and (module / 'zenoh_session.wasm').is_file()
     return workspace / 'install_wasm'
@@ -64,7 +67,7 @@ def install(tmp_path_factory):
 
 @pytest.fixture
 def router():
-    """A router with tcp and ws listeners on loopback."""
+    """Run a router with tcp and ws listeners on loopback."""
     with ZenohRouter() as r:
         yield r
 
@@ -85,7 +88,7 @@ def _wait(predicate, timeout, what):
     raise AssertionError(f'timed out after {timeout} s waiting for {what}')
 
 
-def test_a_talker_is_heard_by_a_zenoh_peer_with_rmw_zenohs_key_attachment_and_tokens(
+def test_a_talker_is_heard_by_a_zenoh_peer_with_rmw_zenoh_keys_attachments_tokens(
         install, router):
     peer = RmwZenohPeer(router.tcp)
     key = zenoh_peers.data_key('/chatter', CHATTER)
@@ -136,7 +139,7 @@ def test_a_zenoh_publisher_is_heard_by_a_listener_and_samples_without_attachment
                 nonlocal count
                 count += 1
                 publish(zenoh_peers.cdr_chatter(f'from zenoh {count}', count))
-                return run.count("I heard: [from zenoh") >= 3
+                return run.count('I heard: [from zenoh') >= 3
             _wait(heard, 30, 'the listener to hear the peer')
             publish(zenoh_peers.cdr_chatter('no attachment', 999), with_attachment=False)
             run.wait_for('dropping a sample on /chatter from Zenoh', timeout=20)

@@ -28,7 +28,7 @@ import time
 
 
 def free_port():
-    """A TCP port free on loopback now."""
+    """Return a TCP port free on loopback now."""
     with socket.socket() as s:
         s.bind(('127.0.0.1', 0))
         return s.getsockname()[1]
@@ -100,18 +100,18 @@ def _router_main(endpoints):
 # ---------------------------------------------------------------- rmw_zenoh's formats
 
 def dds_type(ros_type):
-    """rmw_zenoh's type name: pkg/msg/Type -> pkg::msg::dds_::Type_."""
+    """Return rmw_zenoh's type name: pkg/msg/Type -> pkg::msg::dds_::Type_."""
     pkg, kind, name = ros_type.split('/')
     return f'{pkg}::{kind}::dds_::{name}_'
 
 
 def data_key(name, ros_type, domain=0):
-    """The key of a topic or service on Humble (no type hash)."""
+    """Return the key of a topic or service on Humble (no type hash)."""
     return f'{domain}/{name.strip("/")}/{dds_type(ros_type)}/TypeHashNotSupported'
 
 
 def attachment(sequence, gid, timestamp_ns=None):
-    """The 33-byte attachment, serialized by zenoh.ext (int64, int64, a sequence of 16 uint8)."""
+    """Serialize the 33-byte attachment with zenoh.ext (int64, int64, 16 uint8)."""
     from zenoh.ext import Int64, UInt8, z_serialize
     stamp = time.time_ns() if timestamp_ns is None else timestamp_ns
     return z_serialize((Int64(sequence), Int64(stamp), [UInt8(b) for b in gid])).to_bytes()
@@ -126,7 +126,7 @@ def parse_attachment(data):
 
 
 def cdr_chatter(text, count):
-    """A demo_interfaces/msg/Chatter in CDR (little-endian, with its header)."""
+    """Encode a demo_interfaces/msg/Chatter in CDR (little-endian, with its header)."""
     raw = text.encode() + b'\0'
     body = struct.pack('<I', len(raw)) + raw
     body += b'\0' * (-len(body) % 4)
@@ -169,7 +169,7 @@ class RmwZenohPeer:
 
     def token_key(self, kind, node, node_id, entity_id, name=None, ros_type=None,
                   qos='::,10:,:,:,,', namespace='/'):
-        """An rmw_zenoh liveliness token key."""
+        """Return an rmw_zenoh liveliness token key."""
         def mangle(text):
             return (text or '').replace('/', '%') or '%'
         fields = ['@ros2_lv', str(self.domain), self.zid, str(node_id), str(entity_id), kind,
@@ -214,12 +214,12 @@ class RmwZenohPeer:
         self._keep.append(self.session.declare_subscriber(key, on_sample))
 
     def samples(self, key):
-        """The samples heard on a listened key: (key, payload, attachment)."""
+        """Return the samples heard on a listened key: (key, payload, attachment)."""
         with self._lock:
             return list(self._samples.get(key, []))
 
     def serve(self, node, node_id, service, ros_type, handler):
-        """A service server: SS token and a complete queryable; handler(payload) -> payload."""
+        """Serve a service: SS token and a complete queryable; handler(payload) -> payload."""
         entity = self._entity_id()
         self.announce(self.token_key('SS', node, node_id, entity, service, ros_type))
 
@@ -245,7 +245,7 @@ class RmwZenohPeer:
         return out
 
     def tokens(self, timeout=3.0):
-        """The liveliness tokens alive on the domain (rmw_zenoh's graph cache query)."""
+        """List the liveliness tokens alive on the domain (rmw_zenoh's graph cache query)."""
         replies = self.session.liveliness().get(f'@ros2_lv/{self.domain}/**', timeout=timeout)
         return sorted(str(r.ok.key_expr) for r in replies if r.ok is not None)
 

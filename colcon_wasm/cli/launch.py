@@ -15,9 +15,9 @@ from colcon_wasm.launch.foxglove import foxglove_plan
 from colcon_wasm.launch.install_space import InstallSpaceError
 from colcon_wasm.launch.rosbridge import add_rosbridge_arguments
 from colcon_wasm.launch.rosbridge import bridge_plan
+from colcon_wasm.launch.runner import DEFAULT_LOAD_TIMEOUT
 from colcon_wasm.launch.zenoh import add_zenoh_arguments
 from colcon_wasm.launch.zenoh import zenoh_plan
-from colcon_wasm.launch.runner import DEFAULT_LOAD_TIMEOUT
 from colcon_wasm.record.session import add_play_arguments
 from colcon_wasm.record.session import add_record_arguments
 from colcon_wasm.record.session import bag_plan

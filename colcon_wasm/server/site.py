@@ -17,6 +17,9 @@
                            ``colcon_wasm/types.json``
 ``/fs/<n>/<path>[/]``      read-only views of the install bases for the
                            programs: listings and files (``views.py``)
+``/zenoh/<file>``          the Zenoh gateway's zenoh-pico module
+                           (``share/zenoh_wasm_gateway/zenoh_session.mjs`` and
+                           ``.wasm``), when the install space has it
 =========================  ==================================================
 """
 
@@ -29,6 +32,8 @@ import threading
 from colcon_wasm.launch.install_view import AMENT_PREFIX_PATH
 from colcon_wasm.launch.install_view import ament_prefixes
 from colcon_wasm.launch.install_view import view_bases
+from colcon_wasm.launch.zenoh import GATEWAY_MODULE
+from colcon_wasm.launch.zenoh import GATEWAY_PACKAGE
 from colcon_wasm.server.files import Refused
 from colcon_wasm.server.files import resolve_under
 from colcon_wasm.server.views import InstallViews
@@ -40,6 +45,8 @@ PAGE_MODULE = '/launcher/app.mjs'
 # /wasm_js/ entries that belong to the page (same version as the page), not
 # to the runtime the executables were built with
 PAGE_MODULES = ('cdr.mjs', 'page', 'bridges')
+# the files of /zenoh/
+GATEWAY_FILES = (GATEWAY_MODULE, GATEWAY_MODULE[:-len('.mjs')] + '.wasm')
 
 # static `import ... from '<url>'` and `export ... from '<url>'` of an ES module
 _IMPORT = re.compile(r"""^\s*(?:import|export)\b[^'"]*?\bfrom\s*['"]([^'"]+)['"]"""
@@ -141,6 +148,8 @@ class Site:
             # Python nodes in the page: Pyodide's URL, or why there is none
             'python': {'pyodide': '/pyodide/' if self.pyodide_dir else None,
                        'problem': self.pyodide_problem, **self._python_packages()},
+            # ?zenoh=ws/HOST:PORT: the gateway's module, or null without zenoh_wasm_gateway
+            'zenoh': {'module': '/zenoh/' + GATEWAY_MODULE} if self._gateway_dir() else None,
             # what every program started by the page sees (install_view.py)
             'mounts': self.views.mounts(),
             'environment': {AMENT_PREFIX_PATH: ':'.join(ament_prefixes(self.views.bases))},
@@ -227,6 +236,14 @@ class Site:
             self._allowed = (stamp, allowed)
         return allowed
 
+    def _gateway_dir(self):
+        """Return the share folder of zenoh_wasm_gateway in the install chain, or None."""
+        package = self.install_space.packages().get(GATEWAY_PACKAGE)
+        if package is None:
+            return None
+        folder = Path(package.prefix) / 'share' / GATEWAY_PACKAGE
+        return folder if (folder / GATEWAY_MODULE).is_file() else None
+
     # -------------------------------------------------------------- routing
 
     def route(self, segments, query=None, directory=False):
@@ -265,6 +282,12 @@ class Site:
                 return Content(body=value, content_type='application/json')
             return Content(path=value, content_type='application/octet-stream',
                            precompressed=False)
+        if head == 'zenoh' and len(rest) == 1 and rest[0] in GATEWAY_FILES:
+            folder = self._gateway_dir()
+            if folder is None:
+                raise Refused(404, f"not found: the install space has no '{GATEWAY_PACKAGE}' "
+                              '(build zenoh-pico in the workspace: docs/zenoh.md)')
+            return Content(path=resolve_under(folder, rest))
         if head == 'pyodide' and rest and self.pyodide_dir is not None:
             return Content(path=resolve_under(self.pyodide_dir, rest))
         if head == 'favicon.ico' and not rest:

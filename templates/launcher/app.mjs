@@ -5,7 +5,7 @@
 // starts the wasm_js Runtime, and wires the views. `?run=pkg/exe` (repeatable,
 // optionally followed by arguments: `?run=pkg/exe --ros-args -p rate:=5`)
 // starts executables on load; `?rosbridge=ws://HOST:PORT` bridges them to a
-// rosbridge server.
+// rosbridge server; `?zenoh=ws/HOST:PORT` joins them to a Zenoh router's graph.
 
 import { h, setChildren, splitArgs } from './dom.mjs';
 import { Session } from './session.mjs';
@@ -18,6 +18,7 @@ import { ServicesView } from './views/services.mjs';
 import { ActionsView } from './views/actions.mjs';
 import { ParametersView } from './views/parameters.mjs';
 import { bridgeControl } from './views/bridge.mjs';
+import { zenohControl } from './views/zenoh.mjs';
 import { bagControl } from './views/bag.mjs';
 
 const workspace = JSON.parse(document.getElementById('workspace').textContent);
@@ -39,6 +40,7 @@ function header(session) {
     h('span.workspace', { title: workspace.install_base }, workspace.install_base),
     h('span.spacer'),
     bridgeControl(session),
+    zenohControl(session, workspace),
     bagControl(session),
     running,
     h('span.chip', { title: `wasm_js runtime from ${workspace.runtime_origin}` }, h('span.dot'), 'wasm_js'),
@@ -177,6 +179,11 @@ async function main() {
   const rosbridge = new URLSearchParams(location.search).get('rosbridge') || relay;
   if (rosbridge) {
     session.connectBridge(rosbridge).catch((e) => banners.append(h('div.banner.warn', {}, `?rosbridge=${rosbridge}: ${e.message}`)));
+  }
+  // ?zenoh=ws/HOST:PORT joins them to the ROS 2 graph of a Zenoh router (rmw_zenoh)
+  const zenoh = new URLSearchParams(location.search).get('zenoh');
+  if (zenoh) {
+    session.connectZenoh(zenoh).catch((e) => banners.append(h('div.banner.warn#zenoh-error', {}, `?zenoh=${zenoh}: ${e.message}`)));
   }
   document.body.dataset.state = 'ready';
 }

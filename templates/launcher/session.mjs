@@ -32,6 +32,7 @@ export class Session {
     this.typeError = null;
     this.graph = graphModel(null);
     this.bridge = null;
+    this.zenoh = null;
   }
 
   on(event, callback) {
@@ -91,7 +92,7 @@ export class Session {
   }
 
   refreshGraph(raw) {
-    this.graph = mergeRemote(graphModel(raw, { toolsPid: this.tools ? this.tools.pid : undefined }), this.bridge);
+    this.graph = mergeRemote(mergeRemote(graphModel(raw, { toolsPid: this.tools ? this.tools.pid : undefined }), this.bridge), this.zenoh);
     this.emit('graph', this.graph);
   }
 
@@ -113,6 +114,41 @@ export class Session {
     });
     this.emit('bridge', this.bridge);
     return this.bridge;
+  }
+
+  /**
+   * Join the page's nodes to the ROS 2 graph of a Zenoh router
+   * (`?zenoh=ws/HOST:PORT`, the header's field): bridges/zenoh/gateway.mjs
+   * with the install space's zenoh-pico module (workspace.zenoh.module).
+   */
+  async connectZenoh(endpoint) {
+    await this.ready;
+    if (!this.workspace.zenoh) {
+      throw new Error('the install space has no zenoh_wasm_gateway: build zenoh-pico in the workspace (docs/zenoh.md)');
+    }
+    if (this.zenoh) await this.disconnectZenoh();
+    const { parseEndpoint } = await import('/wasm_js/bridges/zenoh/link.mjs');
+    if (parseEndpoint(endpoint).scheme !== 'ws') throw new Error(`a page reaches a router through its WebSocket listener: ws/HOST:PORT, not ${endpoint}`);
+    const [{ ZenohGateway }, { default: createModule }] = await Promise.all([
+      import('/wasm_js/bridges/zenoh/gateway.mjs'), import(this.workspace.zenoh.module)]);
+    this.zenoh = await ZenohGateway.start({
+      runtime: this.runtime, registry: this.registry, endpoint, createModule,
+      log: (level, text) => (level === 'error' || level === 'warning' ? console.warn : console.log)(`[zenoh] ${text}`),
+      onChange: () => {
+        this.emit('zenoh', this.zenoh);
+        this.refreshGraph(this.runtime.graph());
+      },
+    });
+    this.emit('zenoh', this.zenoh);
+    return this.zenoh;
+  }
+
+  async disconnectZenoh() {
+    const gateway = this.zenoh;
+    this.zenoh = null;
+    if (gateway) await gateway.close();
+    this.emit('zenoh', null);
+    this.refreshGraph(this.runtime.graph());
   }
 
   async disconnectBridge() {
