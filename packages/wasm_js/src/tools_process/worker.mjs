@@ -34,6 +34,13 @@ let nextRecording = 1;
 const RECORDING_ONLY_WAKE_MS = 5;
 let armed = false;
 let drainQueued = false;
+/**
+ * Work that must follow the reply of the current call: a new subscription's
+ * first drain (a TRANSIENT_LOCAL writer's history is there at once) goes
+ * after the reply that gives the main thread its id, else the main thread
+ * gets a batch for a subscription it does not know yet, and drops it.
+ */
+let afterReply = [];
 
 /**
  * Drain once the current call is done: a subscription of this process to a
@@ -153,7 +160,7 @@ const methods = {
   subscribe(spec) {
     const ep = endpoint(spec, KIND_SUBSCRIPTION);
     subscriptions.add(ep);
-    Promise.resolve().then(drain);
+    afterReply.push(drain);
     return ep;
   },
   advertise(spec) {
@@ -203,7 +210,7 @@ const methods = {
   serve(spec) {
     const ep = endpoint(spec, KIND_SERVICE);
     servers.add(ep);
-    Promise.resolve().then(drain);
+    afterReply.push(drain);
     return ep;
   },
   respond(ep, id, data, timeoutMs) {
@@ -252,6 +259,9 @@ async function onMessage(m) {
   } catch (e) {
     post({ type: FromTools.RETURN, id: m.id, ok: false, error: { name: e.name, message: e.message, code: e.code || 1, stack: e.stack } });
   }
+  const after = afterReply;
+  afterReply = [];
+  for (const fn of after) fn();
 }
 
 if (port) port.on('message', onMessage);
