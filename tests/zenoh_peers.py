@@ -190,11 +190,27 @@ class RmwZenohPeer:
         self.announce(self.token_key('NN', node, node_id, node_id))
         return node_id
 
-    def advertise(self, node, node_id, topic, ros_type):
-        """Declare a publisher (MP token and a zenoh publisher); returns publish(cdr)."""
+    def advertise(self, node, node_id, topic, ros_type, transient_local_depth=None):
+        """
+        Declare a publisher (MP token and a zenoh publisher); returns publish(cdr).
+
+        With ``transient_local_depth``, a TRANSIENT_LOCAL one as rmw_zenoh declares
+        it: zenoh.ext's advanced publisher with a cache of that depth, detectable,
+        sporadic heartbeats every 500 ms.
+        """
         entity = self._entity_id()
-        self.announce(self.token_key('MP', node, node_id, entity, topic, ros_type))
-        publisher = self.session.declare_publisher(data_key(topic, ros_type, self.domain))
+        key = data_key(topic, ros_type, self.domain)
+        if transient_local_depth:
+            from zenoh.ext import CacheConfig, declare_advanced_publisher, MissDetectionConfig
+            qos = f':1:,{transient_local_depth}:,:,:,,'
+            publisher = declare_advanced_publisher(
+                self.session, key, cache=CacheConfig(max_samples=transient_local_depth),
+                sample_miss_detection=MissDetectionConfig(sporadic_heartbeat=0.5),
+                publisher_detection=True)
+        else:
+            qos = '::,10:,:,:,,'
+            publisher = self.session.declare_publisher(key)
+        self.announce(self.token_key('MP', node, node_id, entity, topic, ros_type, qos=qos))
         self._keep.append(publisher)
         gid = os.urandom(16)
         counter = [0]
@@ -212,6 +228,20 @@ class RmwZenohPeer:
                 self._samples.setdefault(key, []).append(
                     (str(sample.key_expr), sample.payload.to_bytes(), att))
         self._keep.append(self.session.declare_subscriber(key, on_sample))
+
+    def listen_transient_local(self, key, depth):
+        """Subscribe as a TRANSIENT_LOCAL rmw_zenoh subscription: the caches' history comes first."""
+        from zenoh.ext import declare_advanced_subscriber, HistoryConfig, RecoveryConfig
+
+        def on_sample(sample):
+            att = sample.attachment.to_bytes() if sample.attachment is not None else None
+            with self._lock:
+                self._samples.setdefault(key, []).append(
+                    (str(sample.key_expr), sample.payload.to_bytes(), att))
+        self._keep.append(declare_advanced_subscriber(
+            self.session, key, on_sample,
+            history=HistoryConfig(detect_late_publishers=True, max_samples=depth),
+            recovery=RecoveryConfig(heartbeat=True), subscriber_detection=True))
 
     def samples(self, key):
         """Return the samples heard on a listened key: (key, payload, attachment)."""

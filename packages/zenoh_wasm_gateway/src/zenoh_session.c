@@ -278,6 +278,101 @@ EMSCRIPTEN_KEEPALIVE void zg_publisher_drop(z_owned_publisher_t *pub) {
     free(pub);
 }
 
+/*------------------ transient local: zenoh-ext's advanced publisher and subscriber ------------------*/
+
+#if Z_FEATURE_ADVANCED_PUBLICATION != 1 || Z_FEATURE_ADVANCED_SUBSCRIPTION != 1
+#error "the Zenoh gateway needs zenoh-pico's advanced publisher and subscriber (recipes/humble.yaml)"
+#endif
+
+/*
+ * As rmw_zenoh declares them for TRANSIENT_LOCAL (rmw_publisher_data.cpp,
+ * rmw_subscription_data.cpp): the publisher keeps its last `depth` samples
+ * for late subscribers and can be detected; RELIABLE adds sequence numbers
+ * and a sporadic heartbeat (500 ms) for last-sample miss detection.
+ */
+EMSCRIPTEN_KEEPALIVE ze_owned_advanced_publisher_t *zg_advanced_publisher(const char *keyexpr, int reliable,
+                                                                          int depth) {
+    z_view_keyexpr_t ke;
+    if (z_view_keyexpr_from_str(&ke, keyexpr) < 0) return NULL;
+    ze_owned_advanced_publisher_t *pub = (ze_owned_advanced_publisher_t *)malloc(sizeof(*pub));
+    ze_advanced_publisher_options_t options;
+    ze_advanced_publisher_options_default(&options);
+    options.publisher_options.congestion_control = reliable ? Z_CONGESTION_CONTROL_BLOCK : Z_CONGESTION_CONTROL_DROP;
+    ze_advanced_publisher_cache_options_default(&options.cache);
+    options.cache.is_enabled = true;
+    options.cache.max_samples = depth > 0 ? (size_t)depth : 1;
+    options.publisher_detection = true;
+    if (reliable) {
+        ze_advanced_publisher_sample_miss_detection_options_default(&options.sample_miss_detection);
+        options.sample_miss_detection.is_enabled = true;
+        options.sample_miss_detection.heartbeat_mode = ZE_ADVANCED_PUBLISHER_HEARTBEAT_MODE_SPORADIC;
+        options.sample_miss_detection.heartbeat_period_ms = 500;
+    }
+    if (ze_declare_advanced_publisher(z_loan(g_session), pub, z_loan(ke), &options) < 0) {
+        free(pub);
+        return NULL;
+    }
+    return pub;
+}
+
+/** Publish with an advanced publisher (kept in its cache). */
+EMSCRIPTEN_KEEPALIVE int zg_advanced_put(ze_owned_advanced_publisher_t *pub, const uint8_t *payload, size_t len,
+                                         const uint8_t *attachment, size_t attachment_len) {
+    z_owned_bytes_t bytes, att;
+    bytes_from(&bytes, payload, len);
+    ze_advanced_publisher_put_options_t options;
+    ze_advanced_publisher_put_options_default(&options);
+    if (attachment_len) {
+        bytes_from(&att, attachment, attachment_len);
+        options.put_options.attachment = z_move(att);
+    }
+    return ze_advanced_publisher_put(z_loan(*pub), z_move(bytes), &options);
+}
+
+/** Undeclare an advanced publisher. */
+EMSCRIPTEN_KEEPALIVE void zg_advanced_publisher_drop(ze_owned_advanced_publisher_t *pub) {
+    if (pub == NULL) return;
+    if (g_open) ze_undeclare_advanced_publisher(z_move(*pub));
+    free(pub);
+}
+
+/** An advanced subscriber that asks the publishers' caches for their last `depth` samples, late joiners too. */
+EMSCRIPTEN_KEEPALIVE ze_owned_advanced_subscriber_t *zg_advanced_subscriber(int id, const char *keyexpr, int reliable,
+                                                                            int depth) {
+    z_view_keyexpr_t ke;
+    if (z_view_keyexpr_from_str(&ke, keyexpr) < 0) return NULL;
+    ze_owned_advanced_subscriber_t *sub = (ze_owned_advanced_subscriber_t *)malloc(sizeof(*sub));
+    z_owned_closure_sample_t callback;
+    z_closure(&callback, on_sample, NULL, (void *)(intptr_t)id);
+    ze_advanced_subscriber_options_t options;
+    ze_advanced_subscriber_options_default(&options);
+    ze_advanced_subscriber_history_options_default(&options.history);
+    options.history.is_enabled = true;
+    options.history.detect_late_publishers = true;
+    options.history.max_samples = depth > 0 ? (size_t)depth : 1;
+    options.subscriber_detection = true;
+    options.query_timeout_ms = UINT64_MAX;
+    if (reliable) {
+        ze_advanced_subscriber_recovery_options_default(&options.recovery);
+        options.recovery.is_enabled = true;
+        ze_advanced_subscriber_last_sample_miss_detection_options_default(&options.recovery.last_sample_miss_detection);
+        options.recovery.last_sample_miss_detection.is_enabled = true;
+        options.recovery.last_sample_miss_detection.periodic_queries_period_ms = 0; /* heartbeats */
+    }
+    if (ze_declare_advanced_subscriber(z_loan(g_session), sub, z_loan(ke), z_move(callback), &options) < 0) {
+        free(sub);
+        return NULL;
+    }
+    return sub;
+}
+
+/** Undeclare an advanced subscriber. */
+EMSCRIPTEN_KEEPALIVE void zg_advanced_subscriber_drop(ze_owned_advanced_subscriber_t *sub) {
+    if (sub == NULL) return;
+    if (g_open) ze_undeclare_advanced_subscriber(z_move(*sub));
+    free(sub);
+}
+
 /*------------------ liveliness tokens ------------------*/
 
 /** Declare a liveliness token on `keyexpr`. Returns a handle or 0. */

@@ -35,13 +35,24 @@ export class TopicOut {
     this.stop = null;
     const qos = publishers.map((e) => e.qos || {});
     this.reliable = qos.some((q) => q.reliability !== 'best_effort');
+    // TRANSIENT_LOCAL publishers: an advanced publisher keeps their last samples for late remote subscribers
+    const latched = qos.filter((q) => q.durability === 'transient_local');
+    this.cacheDepth = latched.length ? Math.max(1, ...latched.map((q) => q.depth || 1)) : 0;
     const keepAll = qos.some((q) => q.history === 'keep_all');
     const tapQos = {
       history: keepAll ? 'keep_all' : 'keep_last', depth: Math.max(100, ...qos.map((q) => q.depth || 0)),
       reliability: this.reliable ? 'reliable' : 'best_effort',
       durability: qos.length && qos.every((q) => q.durability === 'transient_local') ? 'transient_local' : 'volatile',
     };
-    gateway.link.listen(topic, type, (batch) => this._local(batch), tapQos).then((stop) => {
+    const onBatch = (batch) => {
+      try {
+        this._local(batch);
+      } catch (error) {
+        gateway.log('error', `cannot send ${topic} to Zenoh: ${error.stack || error.message}`);
+      }
+    };
+    gateway.log('debug', `${topic}: listening with ${JSON.stringify(tapQos)}`);
+    gateway.link.listen(topic, type, onBatch, tapQos).then((stop) => {
       if (this.closed) stop();
       else this.stop = stop;
     }, (e) => gateway.log('error', `cannot bridge ${topic} to Zenoh: ${e.message}`));
@@ -51,7 +62,10 @@ export class TopicOut {
   attach(session) {
     this.zenoh = null;
     try {
-      this.zenoh = session.publisher(this.key, { reliable: this.reliable });
+      this.zenoh = this.cacheDepth
+        ? session.advancedPublisher(this.key, { reliable: this.reliable, depth: this.cacheDepth })
+        : session.publisher(this.key, { reliable: this.reliable });
+      this.gateway.log('debug', `${this.topic}: ${this.cacheDepth ? `advanced publisher (cache ${this.cacheDepth})` : 'publisher'} on ${this.key}`);
     } catch (error) {
       this.gateway.log('error', `cannot publish ${this.topic} on Zenoh: ${error.message}`);
       return;
@@ -79,6 +93,10 @@ export class TopicOut {
 
   _put(entry) {
     const ret = this.zenoh.put(entry.data, encodeAttachment(entry.seq, entry.timeNs, gidBytes(entry.gid)));
+    if (!this.announced) {
+      this.announced = true;
+      this.gateway.log('debug', `${this.topic}: first message out (${entry.data.length} bytes, zenoh-pico ${ret})`);
+    }
     if (ret === 0) this.gateway.counters.sent += 1;
     else this._wait(entry);
   }
@@ -113,6 +131,7 @@ export class TopicIn {
     this.gateway = gateway;
     this.topic = topic;
     this.type = type;
+    this.qos = qos;
     this.key = dataKey(gateway.domain, topic, type);
     this.zenoh = null;
     this.ready = gateway.link.publisher(topic, type, qos);
@@ -123,7 +142,11 @@ export class TopicIn {
   attach(session) {
     this.zenoh = null;
     try {
-      this.zenoh = session.subscribe(this.key, (sample) => this._sample(sample));
+      const onSample = (sample) => this._sample(sample);
+      // TRANSIENT_LOCAL subscriptions: an advanced subscriber asks the remote caches for their history
+      this.zenoh = this.qos.durability === 'transient_local'
+        ? session.advancedSubscribe(this.key, onSample, { reliable: this.qos.reliability !== 'best_effort', depth: this.qos.depth })
+        : session.subscribe(this.key, onSample);
     } catch (error) {
       this.gateway.log('error', `cannot subscribe to ${this.topic} on Zenoh: ${error.message}`);
     }

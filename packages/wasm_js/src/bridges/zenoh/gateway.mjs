@@ -215,11 +215,18 @@ export class ZenohGateway {
       const pubs = t.publishers.filter((e) => !mine(e));
       const subs = t.subscriptions.filter((e) => !mine(e));
       if (pubs.length && this._known(pubs[0].type, t.name)) wantOut.set(t.name, { type: normalizeTypeName(pubs[0].type), publishers: pubs });
-      if (subs.length && this._known(subs[0].type, t.name)) {
-        const q = subs[0].qos || {};
+      // in: local subscriptions and remote publishers (their tokens); the local proxy publisher
+      // goes with the last remote one, so local subscriptions see it leave (graph, liveliness)
+      const remotePubs = this.remoteGraph.endpoints(Kind.PUBLISHER, t.name);
+      if (subs.length && remotePubs.length && this._known(subs[0].type, t.name)) {
+        const qos = subs.map((e) => e.qos || {});
+        const latched = qos.filter((q) => q.durability === 'transient_local');
+        const remoteLatched = remotePubs.some((e) => e.qos && e.qos.durability === 'transient_local');
         wantIn.set(t.name, {
           type: normalizeTypeName(subs[0].type),
-          qos: { history: 'keep_last', depth: Math.max(10, q.depth || 10), reliability: q.reliability === 'best_effort' ? 'best_effort' : 'reliable', durability: 'volatile' },
+          qos: latched.length && remoteLatched
+            ? { history: 'keep_last', depth: Math.max(1, ...latched.map((q) => q.depth || 1)), reliability: 'reliable', durability: 'transient_local' }
+            : { history: 'keep_last', depth: Math.max(10, ...qos.map((q) => q.depth || 10)), reliability: qos.every((q) => q.reliability === 'best_effort') ? 'best_effort' : 'reliable', durability: 'volatile' },
         });
       }
     }
@@ -242,7 +249,7 @@ export class ZenohGateway {
       else if (clients.length && this.remoteGraph.endpoints(Kind.SERVER, s.name).length) wantProxied.set(s.name, { type: normalizeTypeName(type) });
     }
     this._apply(this.out, wantOut, TopicOut);
-    this._apply(this.in, wantIn, TopicIn);
+    this._apply(this.in, wantIn, TopicIn, (b, w) => b.qos.durability === w.qos.durability && b.qos.depth === w.qos.depth);
     this._apply(this.served, wantServed, ServiceServed);
     this._apply(this.proxied, wantProxied, ServiceProxied);
     for (const [name, w] of wantOut) {
@@ -252,16 +259,17 @@ export class ZenohGateway {
     this.onChange(this);
   }
 
-  _apply(current, wanted, Bridge) {
+  _apply(current, wanted, Bridge, same = () => true) {
     for (const [name, b] of current) {
       const w = wanted.get(name);
-      if (!w || w.type !== b.type) {
+      if (!w || w.type !== b.type || !same(b, w)) {
         current.delete(name);
         b.close();
       }
     }
     for (const [name, w] of wanted) {
       if (current.has(name)) continue;
+      this.log('debug', `bridging ${name} (${Bridge.name}, ${w.type})`);
       const b = new Bridge(this, name, w);
       current.set(name, b);
       if (this.session && this.session.up) b.attach(this.session);

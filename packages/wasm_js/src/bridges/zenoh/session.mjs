@@ -228,6 +228,40 @@ export class ZenohSession {
     return entity;
   }
 
+  /**
+   * Declare zenoh-ext's advanced publisher, as rmw_zenoh does for TRANSIENT_LOCAL:
+   * a cache of the last `depth` samples for late subscribers, detectable.
+   * @returns {{put: function(Uint8Array, Uint8Array=): number, close: function(): void}}
+   */
+  advancedPublisher(key, { reliable = true, depth = 1 } = {}) {
+    const handle = this._declare((k) => this.module._zg_advanced_publisher(k, reliable ? 1 : 0, depth), key);
+    const entity = this._entity(handle, 0, key, '_zg_advanced_publisher_drop', 'advanced publisher');
+    entity.put = (payload, attachment) => {
+      if (!this.up || entity.closed) return -1;
+      const [p, n] = this._bytes(payload);
+      const [a, m] = this._bytes(attachment);
+      try {
+        return this.module._zg_advanced_put(handle, p, n, a, m);
+      } finally {
+        if (p) this.module._free(p);
+        if (a) this.module._free(a);
+      }
+    };
+    return entity;
+  }
+
+  /**
+   * Subscribe with zenoh-ext's advanced subscriber (rmw_zenoh's TRANSIENT_LOCAL):
+   * the publishers' caches are asked for their last `depth` samples, late publishers too.
+   * @returns {{close: function(): void}}
+   */
+  advancedSubscribe(key, onSample, { reliable = true, depth = 1 } = {}) {
+    const id = nextEntityId++;
+    this.handlers.set(id, { sample: onSample });
+    const handle = this._declare((k) => this.module._zg_advanced_subscriber(id, k, reliable ? 1 : 0, depth), key);
+    return this._entity(handle, id, key, '_zg_advanced_subscriber_drop', 'advanced subscriber');
+  }
+
   /** Declare a liveliness token. @returns {{close: function(): void}} */
   token(key) {
     const handle = this._declare((k) => this.module._zg_token(k), key);
