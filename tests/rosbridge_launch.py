@@ -33,12 +33,19 @@ URL = re.compile(r'rosbridge server listening on (ws://\S+)')
 class BackgroundLaunch:
     """A `colcon-wasm launch` process and its output, read by a thread."""
 
-    def __init__(self, install, *args, duration=300, wait_url=True, url_pattern=URL):
-        """Start it; with ``wait_url`` wait for the server's URL (``url_pattern``'s group 1)."""
+    def __init__(self, install, *args, duration=300, wait_url=True, url_pattern=URL,
+                 command='launch', after=()):
+        """
+        Start it; with ``wait_url`` wait for the server's URL (``url_pattern``'s group 1).
+
+        ``command='run'`` runs ``colcon-wasm run``, whose PKG EXE and arguments go
+        last (``after``).
+        """
         self.lines = []
         self._lock = threading.Lock()
-        command = [str(demo_build.venv_tool('colcon-wasm')), 'launch', '--install-base',
-                   str(install), '--duration', str(duration), *map(str, args)]
+        command = [str(demo_build.venv_tool('colcon-wasm')), command, '--install-base',
+                   str(install), '--duration', str(duration), *map(str, args),
+                   *map(str, after)]
         # its own process group: SIGINT reaches the Node host as Ctrl-C does
         self.process = subprocess.Popen(command, stdout=subprocess.PIPE,
                                         stderr=subprocess.STDOUT, text=True,

@@ -1,7 +1,7 @@
 # Copyright 2026 colcon-wasm contributors
 # Licensed under the Apache License, Version 2.0
 
-"""The tools process hands a late TRANSIENT_LOCAL subscription the writer's history (node --test)."""
+"""The tools process gives a late TRANSIENT_LOCAL subscription the history (node --test)."""
 
 from pathlib import Path
 import shutil

@@ -230,7 +230,7 @@ class RmwZenohPeer:
         self._keep.append(self.session.declare_subscriber(key, on_sample))
 
     def listen_transient_local(self, key, depth):
-        """Subscribe as a TRANSIENT_LOCAL rmw_zenoh subscription: the caches' history comes first."""
+        """Subscribe as a TRANSIENT_LOCAL rmw_zenoh subscription (the caches' history first)."""
         from zenoh.ext import declare_advanced_subscriber, HistoryConfig, RecoveryConfig
 
         def on_sample(sample):
