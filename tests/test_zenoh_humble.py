@@ -113,3 +113,22 @@ def test_a_latched_zenoh_transform_reaches_a_late_tf2_echo(install, router):
                          timeout=20)
     finally:
         peer.close()
+
+
+def test_an_action_goal_feedback_and_result_cross_the_router(install, router):
+    """Run rclcpp's minimal action server and client, each in its own launch, via the router."""
+    server = BackgroundLaunch(install, '--zenoh', router.tcp, duration=90, wait_url=False,
+                              command='run',
+                              after=('examples_rclcpp_minimal_action_server',
+                                     'action_server_not_composable'))
+    with server:
+        server.wait_for(CONNECTED, timeout=60)
+        client = BackgroundLaunch(install, '--zenoh', router.tcp, duration=90, wait_url=False,
+                                  command='run',
+                                  after=('examples_rclcpp_minimal_action_client',
+                                         'action_client_not_composable_with_feedback'))
+        with client:
+            client.wait_for(CONNECTED, timeout=60)
+            client.wait_for(re.compile(r'Next number in sequence received: \d+'), timeout=60)
+            client.wait_for('result received', timeout=60)
+        server.wait_for('Goal Succeeded', timeout=30)

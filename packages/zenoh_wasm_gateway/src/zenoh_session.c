@@ -187,6 +187,12 @@ EMSCRIPTEN_KEEPALIVE void zg_zid(char *out) {
     out[32] = 0;
 }
 
+/** Gather the messages sent until zg_batch_stop() into as few batches as they fit (one socket write each). */
+EMSCRIPTEN_KEEPALIVE int zg_batch_start(void) { return g_open ? zp_batch_start(z_loan(g_session)) : -1; }
+
+/** Send what zg_batch_start() gathered and go back to one batch per message. */
+EMSCRIPTEN_KEEPALIVE int zg_batch_stop(void) { return g_open ? zp_batch_stop(z_loan(g_session)) : -1; }
+
 /*------------------ subscribers (data and liveliness) ------------------*/
 
 static void on_sample(z_loaned_sample_t *sample, void *ctx) {

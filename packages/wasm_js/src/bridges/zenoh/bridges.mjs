@@ -20,6 +20,15 @@
 
 import { dataKey, decodeAttachment, encodeAttachment, gidBytes, nowNs } from './keys.mjs';
 
+/** An action's result is asked for when the goal starts: its call lasts as long as the goal (rmw_zenoh: no timeout). */
+const LONG_CALL = /\/_action\/get_result$/;
+const LONG_CALL_MS = 24 * 3600 * 1000;
+
+/** How long a call of `service` may take. */
+function callTimeout(gateway, service) {
+  return LONG_CALL.test(service) ? LONG_CALL_MS : gateway.limits.callTimeoutMs;
+}
+
 /** Local publishers' messages, to Zenoh. */
 export class TopicOut {
   constructor(gateway, topic, { type, publishers }) {
@@ -81,6 +90,15 @@ export class TopicOut {
   }
 
   _local(batch) {
+    const session = this.gateway.session;
+    if (batch.length > 1 && this.zenoh && session && session.up) {
+      session.batch(() => this._send(batch));
+    } else {
+      this._send(batch);
+    }
+  }
+
+  _send(batch) {
     for (const m of batch) {
       const gid = this.gateway.gidHex(m.info.publisherGid);
       const seq = (this.sequences.get(gid) || 0) + 1;
@@ -211,7 +229,7 @@ export class ServiceServed {
       return;
     }
     try {
-      const response = await this.gateway.link.call(this.service, this.type, query.payload, this.gateway.limits.callTimeoutMs);
+      const response = await this.gateway.link.call(this.service, this.type, query.payload, callTimeout(this.gateway, this.service));
       query.reply(this.key, response, encodeAttachment(request.sequence, nowNs(), request.gid));
       this.gateway.counters.calls += 1;
     } catch (error) {
@@ -253,7 +271,7 @@ export class ServiceProxied {
     this.sequence += 1n;
     const replies = await session.get(this.key, {
       payload: request.data, attachment: encodeAttachment(this.sequence, nowNs(), this.gid),
-      timeoutMs: this.gateway.limits.callTimeoutMs,
+      timeoutMs: callTimeout(this.gateway, this.service),
     });
     const ok = replies.find((r) => r.ok);
     if (!ok) {

@@ -190,7 +190,8 @@ export class ZenohGateway {
 
   _bridged(name) {
     if (SKIPPED_NAMES.has(name) || PARAMETER_SERVICES.test(name)) return false;
-    return !name.split('/').some((part) => part.startsWith('_'));
+    // hidden names stay local, but for actions' (rmw_zenoh carries them as any other)
+    return !name.split('/').some((part) => part.startsWith('_') && part !== '_action');
   }
 
   _known(type, where, isService = false) {

@@ -157,6 +157,20 @@ export class ZenohSession {
     this.onClosed(error || new Error(`the Zenoh router at ${this.endpoint.text} closed the session`));
   }
 
+  /**
+   * Run `fn` with zenoh-pico's batching on: what it sends goes out in as few
+   * Zenoh batches (socket writes) as fit, at its end.
+   */
+  batch(fn) {
+    if (!this.up) return fn();
+    this.module._zg_batch_start();
+    try {
+      return fn();
+    } finally {
+      if (this.up) this.module._zg_batch_stop();
+    }
+  }
+
   _bytes(data) {
     if (!data || !data.length) return [0, 0];
     const ptr = this.module._malloc(data.length);
