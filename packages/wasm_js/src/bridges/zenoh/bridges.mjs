@@ -39,7 +39,8 @@ export class TopicOut {
     this.key = dataKey(gateway.domain, topic, type);
     this.queue = [];
     this.queuedBytes = 0;
-    this.sequences = new Map(); // local publisher gid -> last sequence sent
+    this.sequences = new Map(); // local publisher gid (bytes) -> last sequence sent
+    this.gids = new Map(); // local publisher gid words -> bytes
     this.zenoh = null;
     this.stop = null;
     const qos = publishers.map((e) => e.qos || {});
@@ -100,7 +101,7 @@ export class TopicOut {
 
   _send(batch) {
     for (const m of batch) {
-      const gid = this.gateway.gidHex(m.info.publisherGid);
+      const gid = this._gid(m.info.publisherGid);
       const seq = (this.sequences.get(gid) || 0) + 1;
       this.sequences.set(gid, seq);
       const entry = { data: m.data, seq, timeNs: BigInt(Math.round(m.info.sourceTime * 1e6)), gid };
@@ -109,8 +110,19 @@ export class TopicOut {
     }
   }
 
+  /** A local publisher's gid (4 words) as 16 bytes, computed once per publisher. */
+  _gid(words) {
+    const key = `${words[0]},${words[1]},${words[2]},${words[3]}`;
+    let bytes = this.gids.get(key);
+    if (!bytes) {
+      bytes = gidBytes(this.gateway.gidHex(words));
+      this.gids.set(key, bytes);
+    }
+    return bytes;
+  }
+
   _put(entry) {
-    const ret = this.zenoh.put(entry.data, encodeAttachment(entry.seq, entry.timeNs, gidBytes(entry.gid)));
+    const ret = this.zenoh.put(entry.data, encodeAttachment(entry.seq, entry.timeNs, entry.gid));
     if (!this.announced) {
       this.announced = true;
       this.gateway.log('debug', `${this.topic}: first message out (${entry.data.length} bytes, zenoh-pico ${ret})`);
