@@ -166,8 +166,11 @@ def find_underlays(*, option_paths, environ, install_base, pthread):
     Find the underlays of a `--wasm` build, highest priority first.
 
     `--wasm-underlay` paths come first (in the order given), then the entries
-    of `COLCON_WASM_PREFIX_PATH` (as sourced `setup.sh` files left them).
-    The build's own install base is never its own underlay.
+    of `COLCON_WASM_PREFIX_PATH` (as sourced `setup.sh` files left them),
+    then the underlays those were built on (their markers), as sourcing an
+    overlay's setup.sh brings the chain below it: an overlay of an overlay
+    sees the packages of both. The build's own install base is never its own
+    underlay.
 
     :raises ColconWasmError: for a path that is missing or not a `--wasm` install
     """
@@ -182,6 +185,20 @@ def find_underlays(*, option_paths, environ, install_base, pthread):
         underlay = _check_underlay(path, source, pthread=pthread)
         if all(u.base != underlay.base for u in found):
             found.append(underlay)
+    return _with_their_underlays(found, own, pthread)
+
+
+def _with_their_underlays(found, own, pthread):
+    """Append the underlays the found ones were built on, recursively, after them."""
+    at = 0
+    while at < len(found):
+        for path in found[at].marker.get('underlays', []):
+            base = Path(path).absolute()
+            if base == own or not base.is_dir() or any(u.base == base for u in found):
+                continue  # a moved underlay of an underlay: what it had is gone with it
+            found.append(_check_underlay(
+                base, f"an underlay of '{found[at].base}'", pthread=pthread))
+        at += 1
     return found
 
 

@@ -28,16 +28,31 @@ INSTALL_MARKER = '.colcon_wasm_install.json'
 PREFIX_PATH_VARIABLE = 'COLCON_WASM_PREFIX_PATH'
 
 
+def _marker_underlays(base):
+    """Get the underlays a base's marker names (none without a readable marker)."""
+    marker = Path(base) / INSTALL_MARKER
+    try:
+        return json.loads(marker.read_text(encoding='utf-8')).get('underlays', [])
+    except (OSError, ValueError):
+        return []
+
+
 def _default_underlays(base, environ):
-    """Get the underlays of a base: its marker's, then COLCON_WASM_PREFIX_PATH."""
-    underlays = []
-    marker = base / INSTALL_MARKER
-    if marker.is_file():
-        try:
-            underlays += json.loads(marker.read_text(encoding='utf-8')).get('underlays', [])
-        except (OSError, ValueError):
-            pass
+    """
+    Get the underlays of a base: its marker's, then COLCON_WASM_PREFIX_PATH.
+
+    The underlays of those follow them (their markers, recursively), as a
+    sourced setup.sh chains what its workspace was built on; bases built
+    before markers listed the whole chain keep working.
+    """
+    underlays = list(_marker_underlays(base))
     underlays += [p for p in environ.get(PREFIX_PATH_VARIABLE, '').split(os.pathsep) if p]
+    at = 0
+    while at < len(underlays):
+        for deeper in _marker_underlays(underlays[at]):
+            if deeper not in underlays and Path(deeper) != Path(base):
+                underlays.append(deeper)
+        at += 1
     return underlays
 
 

@@ -195,7 +195,10 @@ export class ZenohGateway {
   }
 
   _known(type, where, isService = false) {
-    const known = isService ? this.registry.services.has(type) : this.registry.has(type);
+    // an action's services and feedback topic have types of their own, known with the action
+    const action = /^(.+\/action\/.+)_(SendGoal|GetResult|FeedbackMessage)$/.exec(type);
+    const known = (action && this.registry.actions && this.registry.actions.has(action[1]))
+      || (isService ? this.registry.services.has(type) : this.registry.has(type));
     if (!known && !this._warnedTypes.has(type)) {
       this._warnedTypes.add(type);
       this.log('warning', `${where} has type ${type}, which this install does not know (no interface package for it): not bridged to Zenoh`);
