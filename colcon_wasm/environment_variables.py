@@ -19,7 +19,7 @@ __all__ = [
     'LAUNCHER_VERIFY_ENVIRONMENT_VARIABLE', 'NODE_ENVIRONMENT_VARIABLE',
     'PREFIX_PATH_ENVIRONMENT_VARIABLE', 'PTHREAD_POOL_SIZE_ENVIRONMENT_VARIABLE',
     'ROSBRIDGE_DEBUG_ENVIRONMENT_VARIABLE', 'FOXGLOVE_DEBUG_ENVIRONMENT_VARIABLE',
-    'PYODIDE_ENVIRONMENT_VARIABLE',
+    'PYODIDE_ENVIRONMENT_VARIABLE', 'ZENOH_DEBUG_ENVIRONMENT_VARIABLE',
 ]
 
 """The Node.js that runs `colcon test --wasm` tests and `colcon-wasm run/launch`."""
@@ -55,6 +55,11 @@ ROSBRIDGE_DEBUG_ENVIRONMENT_VARIABLE = EnvironmentVariable(
 FOXGLOVE_DEBUG_ENVIRONMENT_VARIABLE = EnvironmentVariable(
     'COLCON_WASM_FOXGLOVE_DEBUG',
     'Set to 1: colcon-wasm launch/run print the debug messages of their Foxglove server')
+
+"""Debug output of the Zenoh gateway of `colcon-wasm launch --zenoh`."""
+ZENOH_DEBUG_ENVIRONMENT_VARIABLE = EnvironmentVariable(
+    'COLCON_WASM_ZENOH_DEBUG',
+    'Set to 1: colcon-wasm launch/run print what their Zenoh gateway bridges')
 
 """The Pyodide npm package of Python nodes (`colcon-wasm run --python`)."""
 PYODIDE_ENVIRONMENT_VARIABLE = EnvironmentVariable(
