@@ -282,3 +282,26 @@ def test_a_bad_endpoint_is_refused_before_anything_starts(tmp_path):
                       f"'{underlay}' --zenoh 127.0.0.1:7447 demo_nodes talker 2>&1").read()
     assert "--zenoh '127.0.0.1:7447' is not a Zenoh endpoint: expected ws/HOST:PORT or " \
         'tcp/HOST:PORT' in result
+
+
+def test_a_crashed_nodes_tokens_are_withdrawn_and_the_others_stay(install, router, tmp_path):
+    launch_file = tmp_path / 'crash.launch.yaml'
+    launch_file.write_text(
+        'launch:\n'
+        '- node: {pkg: demo_nodes, exec: crasher, args: "--ros-args -p delay:=6.0"}\n'
+        '- node: {pkg: demo_nodes, exec: talker}\n')
+    peer = RmwZenohPeer(router.tcp)
+    try:
+        run, zid = _launch(install, launch_file, endpoint=router.tcp)
+        with run:
+            def mine():
+                return [t for t in peer.tokens() if f'/{zid}/' in t]
+            _wait(lambda: any(t.endswith('/NN/%/%/crasher') for t in mine()), 30,
+                  "the crasher's token")
+            assert any('/MP/%/%/crasher/%heartbeat/' in t for t in mine())
+            run.wait_for('I will crash in 6.0 s', timeout=10)
+            _wait(lambda: not any('/crasher' in t for t in mine()), 40,
+                  "the crasher's tokens to go after it crashed")
+            assert any(t.endswith('/NN/%/%/talker') for t in mine()), mine()
+    finally:
+        peer.close()
