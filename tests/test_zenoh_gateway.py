@@ -46,10 +46,15 @@ def zenoh_pico_source():
     return path
 
 
+_OVERLAY = {}
+
+
 @pytest.fixture(scope='module')
 def install(tmp_path_factory):
-    """Build the overlay with zenoh-pico and the gateway, on the demo build."""
+    """Build the overlay with zenoh-pico and the gateway on the demo build, once per run."""
     pytest.importorskip('zenoh', reason='eclipse-zenoh is missing: pip install -e .[test]')
+    if 'install' in _OVERLAY:
+        return _OVERLAY['install']
     source = zenoh_pico_source()
     underlay = demo_build.demo_install()
     workspace = tmp_path_factory.mktemp('zenoh_overlay')
@@ -62,7 +67,8 @@ def install(tmp_path_factory):
         (source / config).read_bytes()
     module = workspace / 'install_wasm' / 'zenoh_wasm_gateway' / 'share' / 'zenoh_wasm_gateway'
     assert (module / 'zenoh_session.mjs').is_file() and (module / 'zenoh_session.wasm').is_file()
-    return workspace / 'install_wasm'
+    _OVERLAY['install'] = workspace / 'install_wasm'
+    return _OVERLAY['install']
 
 
 @pytest.fixture
