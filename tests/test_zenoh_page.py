@@ -125,3 +125,59 @@ def test_the_page_without_the_gateway_says_why(install):  # noqa: F811
         ], query='?zenoh=ws/127.0.0.1:7447')
         assert result['ok'], explain_page(result)
     assert 'the install space has no zenoh_wasm_gateway' in result['saved']['error']
+
+
+def test_a_pages_services_and_tokens_reach_a_zenoh_peer_both_ways(install, router):  # noqa: F811
+    import struct
+    peer = RmwZenohPeer(router.tcp)
+    calls = []
+
+    def handler(request):
+        a, b = struct.unpack_from('<qq', request, 4)
+        calls.append((a, b))
+        return b'\x00\x01\x00\x00' + struct.pack('<q', a + b)
+    node = peer.announce_node('py_adder')
+    peer.serve('py_adder', node, '/py_add', 'demo_interfaces/srv/AddTwoInts', handler)
+    found = {}
+
+    def call_and_list():
+        try:
+            found['tokens'] = [t for t in peer.tokens() if '/SS/' in t or '/NN/' in t]
+            if any('%add_two_ints' in t for t in found['tokens']):
+                found['replies'] = peer.call(
+                    '/add_two_ints', 'demo_interfaces/srv/AddTwoInts',
+                    b'\x00\x01\x00\x00' + struct.pack('<qq', 20, 22), sequence=3)
+        except Exception as e:  # reported by the assertions below
+            found['error'] = repr(e)
+    try:
+        with ServedPage(install) as page:
+            poller_stop = threading.Event()
+
+            def poll():
+                while not poller_stop.wait(1.0) and not found.get('replies'):
+                    call_and_list()
+            poller = threading.Thread(target=poll, daemon=True)
+            poller.start()
+            result = page.run([
+                {'start': 'server', 'pkg': 'demo_nodes', 'exe': 'add_two_ints_server', 'args': []},
+                {'start': 'client', 'pkg': 'demo_nodes', 'exe': 'add_two_ints_client',
+                 'args': ['--ros-args', '-r', 'add_two_ints:=py_add']},
+                CONNECTED_STEP,
+                {'wait': 'client', 'regex': r'Result of add_two_ints: for -?\d+ \+ -?\d+ = -?\d+',
+                 'timeoutMs': 60000},
+                {'until': 'colconWasm.session.zenoh.status().zid', 'save': 'zid'},
+                {'sleep': 3000},
+            ], query=f'?zenoh={router.ws}')
+            poller_stop.set()
+            poller.join(timeout=20)
+            assert result['ok'], explain_page(result)
+        zid = result['saved']['zid']
+        tokens = [t for t in found.get('tokens', []) if f'/{zid}/' in t]
+        assert any(t.endswith('/NN/%/%/add_two_ints_server') for t in tokens), found
+        assert any('/SS/%/%/add_two_ints_server/%add_two_ints/' in t for t in tokens), found
+        (payload, attachment, gid), = found.get('replies') or [(None, None, None)]
+        assert payload == b'\x00\x01\x00\x00' + struct.pack('<q', 42), found
+        assert zenoh_peers.parse_attachment(attachment)[0] == 3
+        assert calls, 'the page client never called the Zenoh server'
+    finally:
+        peer.close()
