@@ -230,7 +230,8 @@ def test_no_router_is_a_clear_error_retried_while_local_nodes_run(install):
                 peer.close()
 
 
-def test_a_router_restart_is_survived_and_traffic_resumes(install):
+def test_a_router_restart_is_survived_and_what_waited_is_sent(install, monkeypatch):
+    monkeypatch.setenv('COLCON_WASM_ZENOH_DEBUG', '1')
     router = ZenohRouter().start()
     key = zenoh_peers.data_key('/chatter', CHATTER)
     try:
@@ -242,12 +243,16 @@ def test_a_router_restart_is_survived_and_traffic_resumes(install):
             peer.close()
             router.kill()
             run.wait_for('lost the Zenoh router at', timeout=30)
+            time.sleep(2.5)  # the talker publishes on (1 Hz): RELIABLE messages wait
             router.start()
-            _wait(lambda: run.count('connected to the Zenoh router at') >= 2, 40,
-                  'the gateway to reconnect')
             peer = RmwZenohPeer(router.tcp)
             peer.listen(key)
             try:
+                _wait(lambda: run.count('connected to the Zenoh router at') >= 2, 40,
+                      'the gateway to reconnect')
+                waited = run.wait_for(re.compile(r'/chatter: sending the (\d+) messages that '
+                                                 r'waited'), timeout=20)
+                assert int(waited.group(1)) >= 2, waited.group(0)
                 samples = _wait(lambda: len(peer.samples(key)) >= 2 and peer.samples(key), 30,
                                 'samples after the restart')
                 assert run.process.poll() is None

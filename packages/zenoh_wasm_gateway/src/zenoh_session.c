@@ -41,6 +41,7 @@ extern void zg_js_query(int id, z_owned_query_t *query, const char *key, size_t 
 extern void zg_js_reply(int id, int ok, const char *key, size_t key_len, const uint8_t *payload, size_t len,
                         const uint8_t *attachment, size_t attachment_len);
 extern void zg_js_reply_done(int id);
+extern void zg_js_matching(int id, int matching);
 
 static z_owned_session_t g_session;
 static bool g_open = false;
@@ -247,8 +248,17 @@ EMSCRIPTEN_KEEPALIVE void zg_subscriber_drop(z_owned_subscriber_t *sub) {
 
 /*------------------ publishers ------------------*/
 
+/*
+ * A new publisher's write filter drops puts until the router has declared
+ * the matching subscribers: the matching status (zg_js_matching(id, ...))
+ * tells the gateway when to send what waited.
+ */
+static void on_matching(const z_matching_status_t *status, void *ctx) {
+    zg_js_matching((int)(intptr_t)ctx, status->matching ? 1 : 0);
+}
+
 /** Declare a publisher; `reliable` picks congestion control BLOCK (else DROP), `express` sends without batching. */
-EMSCRIPTEN_KEEPALIVE z_owned_publisher_t *zg_publisher(const char *keyexpr, int reliable, int express) {
+EMSCRIPTEN_KEEPALIVE z_owned_publisher_t *zg_publisher(int id, const char *keyexpr, int reliable, int express) {
     z_view_keyexpr_t ke;
     if (z_view_keyexpr_from_str(&ke, keyexpr) < 0) return NULL;
     z_owned_publisher_t *pub = (z_owned_publisher_t *)malloc(sizeof(*pub));
@@ -260,6 +270,9 @@ EMSCRIPTEN_KEEPALIVE z_owned_publisher_t *zg_publisher(const char *keyexpr, int 
         free(pub);
         return NULL;
     }
+    z_owned_closure_matching_status_t matching;
+    z_closure_matching_status(&matching, on_matching, NULL, (void *)(intptr_t)id);
+    z_publisher_declare_background_matching_listener(z_loan(*pub), z_move(matching));
     return pub;
 }
 
@@ -296,7 +309,7 @@ EMSCRIPTEN_KEEPALIVE void zg_publisher_drop(z_owned_publisher_t *pub) {
  * for late subscribers and can be detected; RELIABLE adds sequence numbers
  * and a sporadic heartbeat (500 ms) for last-sample miss detection.
  */
-EMSCRIPTEN_KEEPALIVE ze_owned_advanced_publisher_t *zg_advanced_publisher(const char *keyexpr, int reliable,
+EMSCRIPTEN_KEEPALIVE ze_owned_advanced_publisher_t *zg_advanced_publisher(int id, const char *keyexpr, int reliable,
                                                                           int depth) {
     z_view_keyexpr_t ke;
     if (z_view_keyexpr_from_str(&ke, keyexpr) < 0) return NULL;
@@ -318,6 +331,9 @@ EMSCRIPTEN_KEEPALIVE ze_owned_advanced_publisher_t *zg_advanced_publisher(const 
         free(pub);
         return NULL;
     }
+    z_owned_closure_matching_status_t matching;
+    z_closure_matching_status(&matching, on_matching, NULL, (void *)(intptr_t)id);
+    ze_advanced_publisher_declare_background_matching_listener(z_loan(*pub), z_move(matching));
     return pub;
 }
 

@@ -47,4 +47,7 @@ mergeInto(LibraryManager.library, {
   zg_js_reply_done: function (id) {
     Module.zenohHost.replyDone(id);
   },
+  zg_js_matching: function (id, matching) {
+    Module.zenohHost.matching(id, matching === 1);
+  },
 });

@@ -24,6 +24,9 @@ import { dataKey, decodeAttachment, encodeAttachment, gidBytes, nowNs } from './
 const LONG_CALL = /\/_action\/get_result$/;
 const LONG_CALL_MS = 24 * 3600 * 1000;
 
+/** How long a new Zenoh publisher holds messages while the router declares its subscribers. */
+const MATCH_GRACE_MS = 1000;
+
 /** How long a call of `service` may take. */
 function callTimeout(gateway, service) {
   return LONG_CALL.test(service) ? LONG_CALL_MS : gateway.limits.callTimeoutMs;
@@ -68,26 +71,47 @@ export class TopicOut {
     }, (e) => gateway.log('error', `cannot bridge ${topic} to Zenoh: ${e.message}`));
   }
 
-  /** Declare the Zenoh publisher on a (new) session and send what waited. */
+  /**
+   * Declare the Zenoh publisher on a (new) session. zenoh-pico drops puts
+   * until the router has declared the matching subscribers, so messages are
+   * held until the publisher matches (or MATCH_GRACE_MS passes: then there
+   * is no subscriber, and zenoh drops them as it would), and sent in order.
+   */
   attach(session) {
     this.zenoh = null;
+    this.holding = true;
+    const release = () => this._release();
     try {
+      const onMatching = (matching) => { if (matching) release(); };
       this.zenoh = this.cacheDepth
-        ? session.advancedPublisher(this.key, { reliable: this.reliable, depth: this.cacheDepth })
-        : session.publisher(this.key, { reliable: this.reliable });
+        ? session.advancedPublisher(this.key, { reliable: this.reliable, depth: this.cacheDepth, onMatching })
+        : session.publisher(this.key, { reliable: this.reliable, onMatching });
       this.gateway.log('debug', `${this.topic}: ${this.cacheDepth ? `advanced publisher (cache ${this.cacheDepth})` : 'publisher'} on ${this.key}`);
     } catch (error) {
       this.gateway.log('error', `cannot publish ${this.topic} on Zenoh: ${error.message}`);
       return;
     }
+    clearTimeout(this.graceTimer);
+    this.graceTimer = setTimeout(release, MATCH_GRACE_MS);
+  }
+
+  _release() {
+    clearTimeout(this.graceTimer);
+    if (!this.holding || !this.zenoh) return;
+    this.holding = false;
     const waiting = this.queue;
     this.queue = [];
     this.queuedBytes = 0;
-    for (const m of waiting) this._put(m);
+    const session = this.gateway.session;
+    if (waiting.length) this.gateway.log('debug', `${this.topic}: sending the ${waiting.length} messages that waited`);
+    const send = () => { for (const m of waiting) this._put(m); };
+    if (session && session.up && waiting.length > 1) session.batch(send);
+    else send();
   }
 
   detach() {
     this.zenoh = null;
+    clearTimeout(this.graceTimer);
   }
 
   _local(batch) {
@@ -105,8 +129,8 @@ export class TopicOut {
       const seq = (this.sequences.get(gid) || 0) + 1;
       this.sequences.set(gid, seq);
       const entry = { data: m.data, seq, timeNs: BigInt(Math.round(m.info.sourceTime * 1e6)), gid };
-      if (this.zenoh && this.gateway.session && this.gateway.session.up) this._put(entry);
-      else this._wait(entry);
+      if (this.zenoh && !this.holding && this.gateway.session && this.gateway.session.up) this._put(entry);
+      else this._wait(entry, Boolean(this.holding && this.zenoh));
     }
   }
 
@@ -131,8 +155,9 @@ export class TopicOut {
     else this._wait(entry);
   }
 
-  _wait(entry) {
-    if (!this.reliable) {
+  _wait(entry, briefly = false) {
+    // BEST_EFFORT messages wait only for a new publisher to match, not for a session
+    if (!this.reliable && !briefly) {
       this.gateway.counters.lost += 1;
       return;
     }
@@ -149,6 +174,7 @@ export class TopicOut {
 
   close() {
     this.closed = true;
+    clearTimeout(this.graceTimer);
     if (this.stop) this.stop();
     if (this.zenoh) this.zenoh.close();
     this.zenoh = null;

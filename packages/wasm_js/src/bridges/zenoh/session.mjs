@@ -122,6 +122,10 @@ export class ZenohSession {
         const h = this.handlers.get(id);
         if (h && h.reply) defer(() => h.reply({ ok, key, payload, attachment }));
       },
+      matching: (id, matching) => {
+        const h = this.handlers.get(id);
+        if (h && h.matching) defer(() => h.matching(matching));
+      },
       replyDone: (id) => {
         const h = this.handlers.get(id);
         this.handlers.delete(id);
@@ -222,12 +226,15 @@ export class ZenohSession {
   /**
    * Declare a publisher.
    * @param {string} key
-   * @param {{reliable?: boolean, express?: boolean}} [options]
+   * @param {{reliable?: boolean, express?: boolean, onMatching?: function(boolean): void}} [options]
+   *   onMatching: the router declared (true) or withdrew (false) the last matching subscriber
    * @returns {{put: function(Uint8Array, Uint8Array=): number, close: function(): void}}
    */
-  publisher(key, { reliable = true, express = false } = {}) {
-    const handle = this._declare((k) => this.module._zg_publisher(k, reliable ? 1 : 0, express ? 1 : 0), key);
-    const entity = this._entity(handle, 0, key, '_zg_publisher_drop', 'publisher');
+  publisher(key, { reliable = true, express = false, onMatching = null } = {}) {
+    const id = nextEntityId++;
+    this.handlers.set(id, { matching: onMatching });
+    const handle = this._declare((k) => this.module._zg_publisher(id, k, reliable ? 1 : 0, express ? 1 : 0), key);
+    const entity = this._entity(handle, id, key, '_zg_publisher_drop', 'publisher');
     entity.put = (payload, attachment) => {
       if (!this.up || entity.closed) return -1;
       const [p, n] = this._bytes(payload);
@@ -247,9 +254,11 @@ export class ZenohSession {
    * a cache of the last `depth` samples for late subscribers, detectable.
    * @returns {{put: function(Uint8Array, Uint8Array=): number, close: function(): void}}
    */
-  advancedPublisher(key, { reliable = true, depth = 1 } = {}) {
-    const handle = this._declare((k) => this.module._zg_advanced_publisher(k, reliable ? 1 : 0, depth), key);
-    const entity = this._entity(handle, 0, key, '_zg_advanced_publisher_drop', 'advanced publisher');
+  advancedPublisher(key, { reliable = true, depth = 1, onMatching = null } = {}) {
+    const id = nextEntityId++;
+    this.handlers.set(id, { matching: onMatching });
+    const handle = this._declare((k) => this.module._zg_advanced_publisher(id, k, reliable ? 1 : 0, depth), key);
+    const entity = this._entity(handle, id, key, '_zg_advanced_publisher_drop', 'advanced publisher');
     entity.put = (payload, attachment) => {
       if (!this.up || entity.closed) return -1;
       const [p, n] = this._bytes(payload);
