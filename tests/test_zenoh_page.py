@@ -151,13 +151,13 @@ def test_a_pages_services_and_tokens_reach_a_zenoh_peer_both_ways(install, route
             found['error'] = repr(e)
     try:
         with ServedPage(install) as page:
-            poller_stop = threading.Event()
+            lister_stop = threading.Event()
 
             def poll():
-                while not poller_stop.wait(1.0) and not found.get('replies'):
+                while not lister_stop.wait(1.0) and not found.get('replies'):
                     call_and_list()
-            poller = threading.Thread(target=poll, daemon=True)
-            poller.start()
+            lister = threading.Thread(target=poll, daemon=True)
+            lister.start()
             result = page.run([
                 {'start': 'server', 'pkg': 'demo_nodes', 'exe': 'add_two_ints_server', 'args': []},
                 {'start': 'client', 'pkg': 'demo_nodes', 'exe': 'add_two_ints_client',
@@ -168,8 +168,8 @@ def test_a_pages_services_and_tokens_reach_a_zenoh_peer_both_ways(install, route
                 {'until': 'colconWasm.session.zenoh.status().zid', 'save': 'zid'},
                 {'sleep': 3000},
             ], query=f'?zenoh={router.ws}')
-            poller_stop.set()
-            poller.join(timeout=20)
+            lister_stop.set()
+            lister.join(timeout=20)
             assert result['ok'], explain_page(result)
         zid = result['saved']['zid']
         tokens = [t for t in found.get('tokens', []) if f'/{zid}/' in t]
