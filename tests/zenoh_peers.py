@@ -220,26 +220,24 @@ class RmwZenohPeer:
             publisher.put(cdr, attachment=attachment(counter[0], gid) if with_attachment else None)
         return publish
 
-    def listen(self, key):
-        """Subscribe to a key expression; samples() lists what came."""
+    def _recorder(self, key):
+        """Return a sample callback that keeps (key, payload, attachment) for samples(key)."""
         def on_sample(sample):
             att = sample.attachment.to_bytes() if sample.attachment is not None else None
             with self._lock:
                 self._samples.setdefault(key, []).append(
                     (str(sample.key_expr), sample.payload.to_bytes(), att))
-        self._keep.append(self.session.declare_subscriber(key, on_sample))
+        return on_sample
+
+    def listen(self, key):
+        """Subscribe to a key expression; samples() lists what came."""
+        self._keep.append(self.session.declare_subscriber(key, self._recorder(key)))
 
     def listen_transient_local(self, key, depth):
         """Subscribe as a TRANSIENT_LOCAL rmw_zenoh subscription (the caches' history first)."""
         from zenoh.ext import declare_advanced_subscriber, HistoryConfig, RecoveryConfig
-
-        def on_sample(sample):
-            att = sample.attachment.to_bytes() if sample.attachment is not None else None
-            with self._lock:
-                self._samples.setdefault(key, []).append(
-                    (str(sample.key_expr), sample.payload.to_bytes(), att))
         self._keep.append(declare_advanced_subscriber(
-            self.session, key, on_sample,
+            self.session, key, self._recorder(key),
             history=HistoryConfig(detect_late_publishers=True, max_samples=depth),
             recovery=RecoveryConfig(heartbeat=True), subscriber_detection=True))
 

@@ -114,7 +114,8 @@ class Site:
         types = []
         versions = {}
         readable = set()
-        for package in self.install_space.packages().values():
+        installed = self.install_space.packages()
+        for package in installed.values():
             try:
                 manifest = package.manifest
             except Exception as e:  # a broken manifest: show it, serve the rest
@@ -149,7 +150,8 @@ class Site:
             'python': {'pyodide': '/pyodide/' if self.pyodide_dir else None,
                        'problem': self.pyodide_problem, **self._python_packages()},
             # ?zenoh=ws/HOST:PORT: the gateway's module, or null without zenoh_wasm_gateway
-            'zenoh': {'module': '/zenoh/' + GATEWAY_MODULE} if self._gateway_dir() else None,
+            'zenoh': ({'module': '/zenoh/' + GATEWAY_MODULE}
+                      if self._gateway_dir(installed) else None),
             # what every program started by the page sees (install_view.py)
             'mounts': self.views.mounts(),
             'environment': {AMENT_PREFIX_PATH: ':'.join(ament_prefixes(self.views.bases))},
@@ -236,9 +238,15 @@ class Site:
             self._allowed = (stamp, allowed)
         return allowed
 
-    def _gateway_dir(self):
-        """Return the share folder of zenoh_wasm_gateway in the install chain, or None."""
-        package = self.install_space.packages().get(GATEWAY_PACKAGE)
+    def _gateway_dir(self, installed=None):
+        """
+        Return the share folder of zenoh_wasm_gateway in the install chain, or None.
+
+        :param installed: the install space's packages, when the caller has them
+        """
+        if installed is None:
+            installed = self.install_space.packages()
+        package = installed.get(GATEWAY_PACKAGE)
         if package is None:
             return None
         folder = Path(package.prefix) / 'share' / GATEWAY_PACKAGE

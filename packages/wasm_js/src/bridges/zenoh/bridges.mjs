@@ -18,7 +18,9 @@
  * @module bridges/zenoh/bridges
  */
 
+import { gidHex } from '../rosbridge/bus_link.mjs';
 import { dataKey, decodeAttachment, encodeAttachment, gidBytes, nowNs } from './keys.mjs';
+import { randomZid } from './session.mjs';
 
 /** An action's result is asked for when the goal starts: its call lasts as long as the goal (rmw_zenoh: no timeout). */
 const LONG_CALL = /\/_action\/get_result$/;
@@ -102,11 +104,15 @@ export class TopicOut {
     const waiting = this.queue;
     this.queue = [];
     this.queuedBytes = 0;
-    const session = this.gateway.session;
     if (waiting.length) this.gateway.log('debug', `${this.topic}: sending the ${waiting.length} messages that waited`);
-    const send = () => { for (const m of waiting) this._put(m); };
-    if (session && session.up && waiting.length > 1) session.batch(send);
-    else send();
+    this._batched(waiting.length, () => { for (const m of waiting) this._put(m); });
+  }
+
+  /** Run `fn`, which sends `count` messages, in one zenoh-pico batch when there are several. */
+  _batched(count, fn) {
+    const session = this.gateway.session;
+    if (count > 1 && this.zenoh && session) session.batch(fn);
+    else fn();
   }
 
   detach() {
@@ -115,12 +121,7 @@ export class TopicOut {
   }
 
   _local(batch) {
-    const session = this.gateway.session;
-    if (batch.length > 1 && this.zenoh && session && session.up) {
-      session.batch(() => this._send(batch));
-    } else {
-      this._send(batch);
-    }
+    this._batched(batch.length, () => this._send(batch));
   }
 
   _send(batch) {
@@ -139,7 +140,7 @@ export class TopicOut {
     const key = `${words[0]},${words[1]},${words[2]},${words[3]}`;
     let bytes = this.gids.get(key);
     if (!bytes) {
-      bytes = gidBytes(this.gateway.gidHex(words));
+      bytes = gidBytes(gidHex(words));
       this.gids.set(key, bytes);
     }
     return bytes;
@@ -290,7 +291,7 @@ export class ServiceProxied {
     this.type = type;
     this.key = dataKey(gateway.domain, service, type);
     this.sequence = 0n;
-    this.gid = gateway.randomGid();
+    this.gid = randomZid(); // the proxy's client gid: 16 random bytes, as a zid
     this.server = gateway.link.serve(service, type, (requests) => { for (const r of requests) this._request(r); });
     this.server.catch((e) => gateway.log('error', `cannot offer ${service} locally: ${e.message}`));
   }

@@ -21,12 +21,12 @@
  */
 
 import { normalizeTypeName } from '../../cdr.mjs';
-import { BusLink, gidHex } from '../rosbridge/bus_link.mjs';
+import { BusLink } from '../rosbridge/bus_link.mjs';
 import { BRIDGE_NODES } from '../rosbridge/client_topics.mjs';
 import { ServiceProxied, ServiceServed, TopicIn, TopicOut } from './bridges.mjs';
 import { Kind } from './keys.mjs';
 import { RemoteGraph, fqn } from './remote_graph.mjs';
-import { randomZid, ZenohSession } from './session.mjs';
+import { ZenohSession } from './session.mjs';
 import { LocalTokens } from './tokens.mjs';
 
 /** The gateway's node in the local graph. */
@@ -107,15 +107,6 @@ export class ZenohGateway {
   /** Is the gateway's session up? */
   get connected() {
     return this.state === 'connected';
-  }
-
-  gidHex(words) {
-    return gidHex(words);
-  }
-
-  /** A gid for an endpoint of the gateway itself (a proxy's client). */
-  randomGid() {
-    return randomZid();
   }
 
   _mine(e) {

@@ -182,6 +182,31 @@ export class ZenohSession {
     return [ptr, data.length];
   }
 
+  /**
+   * Copy a payload and an attachment into the module for one call:
+   * `fn(payloadPtr, payloadLength, attachmentPtr, attachmentLength)`, the
+   * payload's length -1 when there is none (null); both freed after.
+   */
+  _withBytes(payload, attachment, fn) {
+    const [p, n] = payload === null ? [0, -1] : this._bytes(payload);
+    const [a, m] = this._bytes(attachment);
+    try {
+      return fn(p, n, a, m);
+    } finally {
+      if (p) this.module._free(p);
+      if (a) this.module._free(a);
+    }
+  }
+
+  /** Give a publisher entity `put(payload, attachment)`, calling the module's `put` export. */
+  _withPut(entity, handle, put) {
+    entity.put = (payload, attachment = null) => {
+      if (!this.up || entity.closed) return -1;
+      return this._withBytes(payload, attachment, (p, n, a, m) => this.module[put](handle, p, n, a, m));
+    };
+    return entity;
+  }
+
   _string(text) {
     const size = this.module.lengthBytesUTF8(text) + 1;
     const ptr = this.module._malloc(size);
@@ -234,19 +259,7 @@ export class ZenohSession {
     const id = nextEntityId++;
     this.handlers.set(id, { matching: onMatching });
     const handle = this._declare((k) => this.module._zg_publisher(id, k, reliable ? 1 : 0, express ? 1 : 0), key);
-    const entity = this._entity(handle, id, key, '_zg_publisher_drop', 'publisher');
-    entity.put = (payload, attachment) => {
-      if (!this.up || entity.closed) return -1;
-      const [p, n] = this._bytes(payload);
-      const [a, m] = this._bytes(attachment);
-      try {
-        return this.module._zg_put(handle, p, n, a, m);
-      } finally {
-        if (p) this.module._free(p);
-        if (a) this.module._free(a);
-      }
-    };
-    return entity;
+    return this._withPut(this._entity(handle, id, key, '_zg_publisher_drop', 'publisher'), handle, '_zg_put');
   }
 
   /**
@@ -259,18 +272,7 @@ export class ZenohSession {
     this.handlers.set(id, { matching: onMatching });
     const handle = this._declare((k) => this.module._zg_advanced_publisher(id, k, reliable ? 1 : 0, depth), key);
     const entity = this._entity(handle, id, key, '_zg_advanced_publisher_drop', 'advanced publisher');
-    entity.put = (payload, attachment) => {
-      if (!this.up || entity.closed) return -1;
-      const [p, n] = this._bytes(payload);
-      const [a, m] = this._bytes(attachment);
-      try {
-        return this.module._zg_advanced_put(handle, p, n, a, m);
-      } finally {
-        if (p) this.module._free(p);
-        if (a) this.module._free(a);
-      }
-    };
-    return entity;
+    return this._withPut(entity, handle, '_zg_advanced_put');
   }
 
   /**
@@ -316,17 +318,11 @@ export class ZenohSession {
         reply: (r) => { replies.push(r); if (onReply) onReply(r); },
         done: () => resolve(replies),
       });
-      const [p, n] = payload ? this._bytes(payload) : [0, -1];
-      const [a, m] = this._bytes(attachment);
-      try {
-        const ret = this._declare((k) => this.module._zg_get(id, k, p, payload ? Math.max(n, 0) : -1, a, m, timeoutMs), key);
-        if (ret !== 0) {
-          this.handlers.delete(id);
-          reject(new Error(`zenoh-pico could not send the query on '${key}' (error ${ret})`));
-        }
-      } finally {
-        if (p) this.module._free(p);
-        if (a) this.module._free(a);
+      const ret = this._withBytes(payload, attachment,
+        (p, n, a, m) => this._declare((k) => this.module._zg_get(id, k, p, n, a, m, timeoutMs), key));
+      if (ret !== 0) {
+        this.handlers.delete(id);
+        reject(new Error(`zenoh-pico could not send the query on '${key}' (error ${ret})`));
       }
     });
   }
@@ -397,16 +393,13 @@ class Query {
   _finish(key, payload, attachment) {
     if (this.done) return;
     this.done = true;
-    const m = this.session.module;
+    // also when the session is down: zenoh-pico then only releases the query
+    const module = this.session.module;
     const k = this.session._string(key);
-    const [p, n] = payload ? this.session._bytes(payload) : [0, -1];
-    const [a, al] = this.session._bytes(attachment);
     try {
-      m._zg_query_reply(this.handle, k, p, payload ? Math.max(n, 0) : -1, a, al);
+      this.session._withBytes(payload, attachment, (p, n, a, m) => module._zg_query_reply(this.handle, k, p, n, a, m));
     } finally {
-      m._free(k);
-      if (p) m._free(p);
-      if (a) m._free(a);
+      module._free(k);
     }
   }
 }
