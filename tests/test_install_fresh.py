@@ -73,6 +73,8 @@ NOT_RUN = {
         'a Foxglove server on the served pages: tests/test_foxglove_serve.py',
     'colcon-wasm record ':
         'recording a rosbridge server (serve --rosbridge): tests/test_record_remote.py',
+    'colcon-wasm launch demo_nodes/talker --zenoh':
+        'needs a Zenoh router (eclipse-zenoh, a test extra): tests/test_zenoh_gateway.py',
 }
 
 COMMAND_PREFIXES = ('colcon', 'colcon-wasm', 'blasm', 'scripts/', 'node ', 'pip ',
