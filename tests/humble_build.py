@@ -56,6 +56,18 @@ _NOT_INPUTS = ('colcon_wasm/cli/', 'colcon_wasm/blasm.py',
                'colcon_wasm/task/test.py', 'colcon_wasm/testing/results.py',
                'colcon_wasm/testing/verb.py', 'colcon_wasm/argument_parser/test_result.py')
 
+"""
+The JS runtime (ES modules, the Python worker's rclpy): wasm_js installs these
+files verbatim (its CMakeLists.txt), no other package reads them at build time.
+So they are no input of a build: a cached build gets the current ones
+(:func:`refresh_runtime`), the files `colcon build --packages-select wasm_js`
+would install, and a change to the runtime rebuilds nothing. Its Emscripten JS
+library (src/abi/), linked into every executable, stays an input.
+"""
+_RUNTIME = 'packages/wasm_js/src/'
+_LINKED_RUNTIME = 'packages/wasm_js/src/abi/'
+_RUNTIME_SUFFIXES = ('.mjs', '.js', '.html', '.py')  # wasm_js' install(FILES_MATCHING ...)
+
 
 def humble_snapshot():
     """Get the Humble snapshot folder ($COLCON_WASM_HUMBLE)."""
@@ -111,6 +123,8 @@ def _tree_digest(digest, folder):
             if REPO in path.parents else path.name
         if name.startswith(_NOT_INPUTS) or name.endswith('.md'):
             continue
+        if name.startswith(_RUNTIME) and not name.startswith(_LINKED_RUNTIME):
+            continue
         digest.update(name.encode())
         digest.update(path.read_bytes())
 
@@ -150,6 +164,35 @@ def source_digest(folder):
             digest.update(path.relative_to(folder).as_posix().encode())
             digest.update(path.read_bytes())
     return digest.hexdigest()
+
+
+def refresh_runtime(install):
+    """
+    Give an install space the repository's JS runtime (share/wasm_js/src).
+
+    Mirrors what wasm_js' CMakeLists.txt installs from packages/wasm_js/src/:
+    changed and new files are written, files gone from the repository are
+    removed; other files are left alone. Isolated and merged layouts both.
+    """
+    source = REPO / _RUNTIME
+    wanted = {p.relative_to(source): p for p in source.rglob('*')
+              if p.is_file() and p.name.endswith(_RUNTIME_SUFFIXES)}
+    for share in (Path(install) / 'wasm_js' / 'share' / 'wasm_js',
+                  Path(install) / 'share' / 'wasm_js'):
+        target = share / 'src'
+        if not target.is_dir():
+            continue
+        for path in list(target.rglob('*')):
+            relative = path.relative_to(target)
+            if path.is_file() and path.name.endswith(_RUNTIME_SUFFIXES) \
+                    and relative not in wanted:
+                path.unlink()
+        for relative, path in wanted.items():
+            destination = target / relative
+            data = path.read_bytes()
+            if not destination.is_file() or destination.read_bytes() != data:
+                destination.parent.mkdir(parents=True, exist_ok=True)
+                destination.write_bytes(data)
 
 
 def prune_stale_builds(max_age_hours=24):
@@ -224,6 +267,7 @@ def humble_build(up_to=BELOW_RMW_UP_TO, skip=BELOW_RMW_SKIP,
         raise AssertionError(_FAILED[key])
     if (workspace / 'result.json').is_file():
         os.utime(workspace / 'result.json')  # recently used: keep it
+        refresh_runtime(workspace / 'install_wasm')
         return HumbleBuild(workspace, 0.0, cached=True)
     prune_stale_builds()
     shutil.rmtree(workspace, ignore_errors=True)

@@ -19,6 +19,7 @@ import os
 from pathlib import Path
 
 from humble_build import humble_build
+from humble_build import refresh_runtime
 from humble_build import REPO
 
 """The rclcpp packages of ros2/examples (all of them)."""
@@ -77,6 +78,7 @@ class ExistingBuild:
         self.install = self.workspace / 'install_wasm'
         self.build = self.workspace / 'build_wasm'
         assert self.install.is_dir(), f'no install_wasm in {workspace}'
+        refresh_runtime(self.install)  # the repository's JS runtime, as for a cached build
         self.packages = sorted(p.name for p in self.install.iterdir() if p.is_dir())
 
 
