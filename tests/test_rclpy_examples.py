@@ -5,7 +5,8 @@
 The rclpy packages of ros2/examples, unmodified, with their rclcpp counterparts.
 
 The Humble snapshot's examples_rclpy_minimal_publisher, _subscriber,
-_service and _client are built by ``colcon build --wasm`` (packed for
+_service, _client, _action_server, _action_client, examples_rclpy_executors
+and _guard_conditions are built by ``colcon build --wasm`` (packed for
 Pyodide) as an overlay of the rclcpp build (tests/rclcpp_build.py, which
 has std_msgs, example_interfaces, the rclcpp examples and the runtime,
 wasm_js). They run in Node.js with
@@ -34,6 +35,10 @@ EXAMPLES = {
     'examples_rclpy_minimal_subscriber': 'topics/minimal_subscriber',
     'examples_rclpy_minimal_service': 'services/minimal_service',
     'examples_rclpy_minimal_client': 'services/minimal_client',
+    'examples_rclpy_minimal_action_server': 'actions/minimal_action_server',
+    'examples_rclpy_minimal_action_client': 'actions/minimal_action_client',
+    'examples_rclpy_executors': 'executors',
+    'examples_rclpy_guard_conditions': 'guard_conditions',
 }
 
 
@@ -101,3 +106,94 @@ def test_python_and_cpp_minimal_services_and_clients_call_each_other(overlay):
     assert re.search(r'\[client_async-2\] \[INFO\] \[[\d.]+\] \[minimal_client_async\]: Result '
                      r'of add_two_ints: for 41 \+ 1 = 42', out), out[-6000:]
     assert '[INFO] [client_async-2]: process has finished cleanly' in out
+
+
+def log(out, process, node, text):
+    """Find what ``process`` (launch's ``name-N``) logged matching ``text`` (a regex)."""
+    return re.findall(rf'\[{process}\] \[INFO\] \[[\d.]+\] \[{node}\]: {text}', out)
+
+
+def test_a_python_action_server_serves_the_cpp_clients_feedback_result_and_cancel(overlay):
+    # rclcpp client -> rclpy server (server.py: MultiThreadedExecutor, a reentrant group, an
+    # async execute callback that sleeps 1 s between feedbacks), to the end
+    code, out = launch(overlay, 'examples_rclpy_minimal_action_server/server',
+                       'examples_rclcpp_minimal_action_client/action_client_member_functions')
+    client = 'action_client_member_functions-2'
+    assert log(out, 'server-1', 'minimal_action_server', 'Received goal request'), out[-6000:]
+    feedback = log(out, client, 'minimal_action_client',
+                   r'Next number in sequence received: (\d+)')
+    # (rclcpp drops feedback that comes before the goal response, natively too)
+    assert feedback[-3:] == ['21', '34', '55'], out[-6000:]
+    assert log(out, client, 'minimal_action_client', 'Result received'), out[-6000:]
+    numbers = re.findall(rf'\[{client}\] \[INFO\] \[[\d.]+\] \[minimal_action_client\]: '
+                         r'(\d+)\n', out)
+    assert numbers == ['0', '1', '1', '2', '3', '5', '8', '13', '21', '34', '55'], out[-6000:]
+    assert f'[INFO] [{client}]: process has finished cleanly' in out, out[-6000:]
+    # an rclcpp client that cancels after 3 s: the sleeping execute callback hears it
+    code, out = launch(overlay, 'examples_rclpy_minimal_action_server/server',
+                       'examples_rclcpp_minimal_action_client/'
+                       'action_client_not_composable_with_cancel', duration=15)
+    client = 'action_client_not_composable_with_cancel-2'
+    assert log(out, 'server-1', 'minimal_action_server', 'Received cancel request'), out[-6000:]
+    assert log(out, 'server-1', 'minimal_action_server', 'Goal canceled'), out[-6000:]
+    assert log(out, client, 'minimal_action_client', 'goal is being canceled'), out[-6000:]
+    # the result carries CANCELED (the example then exits with 1, natively too)
+    assert re.search(rf'\[{client}\] \[ERROR\] \[[\d.]+\] \[minimal_action_client\]: Goal '
+                     'was canceled', out), out[-6000:]
+    assert 'Returning result' not in out, out[-6000:]
+
+
+def test_a_python_action_client_drives_the_cpp_server_feedback_result_and_cancel(overlay):
+    # rclpy client (client.py: send_goal_async, feedback, get_result_async) -> rclcpp server
+    code, out = launch(overlay, 'examples_rclcpp_minimal_action_server/'
+                       'action_server_member_functions',
+                       'examples_rclpy_minimal_action_client/client', duration=25)
+    feedback = log(out, 'client-2', 'minimal_action_client',
+                   r"Received feedback: array\('i', \[([\d, ]+)\]\)")
+    assert feedback[0] == '0, 1, 1' and feedback[-1] == '0, 1, 1, 2, 3, 5, 8, 13, 21, 34, 55', \
+        out[-6000:]
+    assert log(out, 'client-2', 'minimal_action_client', 'Goal succeeded! Result: '
+               r"array\('i', \[0, 1, 1, 2, 3, 5, 8, 13, 21, 34, 55\]\)"), out[-6000:]
+    assert '[INFO] [client-2]: process has finished cleanly' in out, out[-6000:]
+    # rclpy client_cancel.py cancels after 2 s
+    code, out = launch(overlay, 'examples_rclcpp_minimal_action_server/'
+                       'action_server_member_functions',
+                       'examples_rclpy_minimal_action_client/client_cancel', duration=10)
+    assert log(out, 'action_server_member_functions-1', 'minimal_action_server',
+               'Received request to cancel goal'), out[-6000:]
+    assert log(out, 'client_cancel-2', 'minimal_action_client',
+               'Goal successfully canceled'), out[-6000:]
+    assert log(out, 'action_server_member_functions-1', 'minimal_action_server',
+               'Goal Canceled'), out[-6000:]
+    assert '[INFO] [client_cancel-2]: process has finished cleanly' in out, out[-6000:]
+
+
+def test_python_action_server_and_client_talk_to_each_other(overlay):
+    code, out = launch(overlay, 'examples_rclpy_minimal_action_server/server',
+                       'examples_rclpy_minimal_action_client/client_cancel', duration=10)
+    assert log(out, 'server-1', 'minimal_action_server', 'Goal canceled'), out[-6000:]
+    assert log(out, 'client_cancel-2', 'minimal_action_client',
+               'Goal successfully canceled'), out[-6000:]
+
+
+def test_guard_condition_and_executor_examples(overlay):
+    code, out = launch(overlay, 'examples_rclpy_guard_conditions/trigger_guard_condition',
+                       duration=15)
+    process = 'trigger_guard_condition-1'
+    assert log(out, process, 'demo_guard_condition',
+               'timer callback triggered guard condition'), out[-6000:]
+    assert log(out, process, 'demo_guard_condition', 'guard callback called shutdown'), \
+        out[-6000:]
+    assert f'[INFO] [{process}]: process has finished cleanly' in out, out[-6000:]
+    # composed (SingleThreadedExecutor: talker and listener) and callback_group
+    # (MultiThreadedExecutor: two timers in one mutually exclusive group, and a listener)
+    code, out = launch(overlay, 'examples_rclpy_executors/composed',
+                       'examples_rclpy_executors/callback_group', duration=20)
+    assert log(out, 'composed-1', 'listener', 'I heard: "Hello World: 2"'), out[-6000:]
+    published = log(out, 'callback_group-2', 'double_talker', r'Publishing: "Hello World: (\d+)"')
+    # the two timers (1 s and 0.5 s) share one counter, one callback at a time
+    assert len(published) >= 6 and published == [str(i) for i in range(len(published))], \
+        out[-6000:]
+    # each process' listener hears both talkers (same topic)
+    assert log(out, 'composed-1', 'listener', f'I heard: "Hello World: {published[-2]}"')
+    assert log(out, 'callback_group-2', 'listener', 'I heard: "Hello World: 2"'), out[-6000:]

@@ -492,12 +492,24 @@ export class TypeRegistry {
     return m;
   }
 
-  /** The service entry {request, response} of a service type. */
+  /**
+   * The service entry {request, response} of a service type; also of an
+   * action's own services, as rcl_action names them (`pkg/action/X_SendGoal`,
+   * `pkg/action/X_GetResult`).
+   */
   service(name) {
     const full = normalizeTypeName(name).replace('/msg/', '/srv/');
-    const s = this.services.get(full);
+    const s = this.services.get(full) || this.actionService(full);
     if (!s) throw this.unknown('service', name, full);
     return s;
+  }
+
+  /** The send_goal or get_result entry of `pkg/action/X_SendGoal` or `_GetResult`, or undefined. */
+  actionService(full) {
+    const m = /^(.+\/action\/.+)_(SendGoal|GetResult)$/.exec(full);
+    const a = m ? this.actions.get(m[1]) : undefined;
+    if (!a) return undefined;
+    return m[2] === 'SendGoal' ? a.send_goal : a.get_result;
   }
 
   /** The action entry of an action type. */

@@ -7,7 +7,7 @@ Python message classes, made at import time from the type descriptions.
 ``from std_msgs.msg import String`` works for every interface package whose
 ``types.json`` the process loaded: a meta path finder (last on
 ``sys.meta_path``, so real modules win) creates ``<pkg>``, ``<pkg>.msg`` and
-``<pkg>.srv``. The classes follow rosidl_generator_py's: ``__slots__``,
+``<pkg>.srv`` and ``<pkg>.action``. The classes follow rosidl_generator_py's: ``__slots__``,
 keyword constructors, defaults, constants as class attributes, ``__eq__``,
 ``__repr__`` and type checks with its messages
 (``The 'data' field must be of type 'str'``). Numeric sequences are
@@ -283,13 +283,58 @@ def service_class(full):
         if description is None:
             raise ImportError(f'unknown service type {full!r}: build its package with colcon '
                               'build --wasm into this install space')
+        cls = _service(full, description['request'], description['response'],
+                       description.get('definition'))
+    return cls
+
+
+def _service(full, request, response, definition=None):
+    pkg, kind, name = full.split('/')
+    cls = type(name, (), {
+        'Request': message_class(request),
+        'Response': message_class(response),
+        '_ros_type': full,
+        '__module__': f'{pkg}.{kind}',
+        '__doc__': definition or f'Service {full}.',
+    })
+    _classes[full] = cls
+    return cls
+
+
+def action_class(full):
+    """
+    Return the class of an action type ``pkg/action/Name``, as rosidl_generator_py's.
+
+    ``Goal``, ``Result`` and ``Feedback``, and ``Impl``: the services and
+    messages rcl_action puts on the wire (``SendGoalService``,
+    ``GetResultService``, ``FeedbackMessage``, ``CancelGoalService``,
+    ``GoalStatusMessage``).
+    """
+    cls = _classes.get(full)
+    if cls is None:
+        description = _descriptions.get('actions', {}).get(full)
+        if description is None:
+            raise ImportError(f'unknown action type {full!r}: build its package with colcon '
+                              'build --wasm into this install space')
         pkg, kind, name = full.split('/')
+        send_goal, get_result = description['send_goal'], description['get_result']
+        impl = type('Impl', (), {
+            'SendGoalService': _service(f'{full}_SendGoal', send_goal['request'],
+                                        send_goal['response']),
+            'GetResultService': _service(f'{full}_GetResult', get_result['request'],
+                                         get_result['response']),
+            'FeedbackMessage': message_class(description['feedback_message']),
+            'CancelGoalService': service_class('action_msgs/srv/CancelGoal'),
+            'GoalStatusMessage': message_class('action_msgs/msg/GoalStatusArray'),
+        })
         cls = type(name, (), {
-            'Request': message_class(description['request']),
-            'Response': message_class(description['response']),
+            'Goal': message_class(description['goal']),
+            'Result': message_class(description['result']),
+            'Feedback': message_class(description['feedback']),
+            'Impl': impl,
             '_ros_type': full,
             '__module__': f'{pkg}.{kind}',
-            '__doc__': description.get('definition') or f'Service {full}.',
+            '__doc__': description.get('definition') or f'Action {full}.',
         })
         _classes[full] = cls
     return cls
@@ -331,6 +376,10 @@ class _InterfaceFinder(importlib.abc.MetaPathFinder, importlib.abc.Loader):
             for full in sorted(_descriptions.get('services', {})):
                 if full.startswith(prefix):
                     setattr(module, full[len(prefix):], service_class(full))
+        if kind == 'action':
+            for full in sorted(_descriptions.get('actions', {})):
+                if full.startswith(prefix):
+                    setattr(module, full[len(prefix):], action_class(full))
         return module
 
     def exec_module(self, module):  # noqa: D102

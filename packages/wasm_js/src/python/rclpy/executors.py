@@ -2,23 +2,74 @@
 # Licensed under the Apache License, Version 2.0
 
 """
-Executors: wait for the nodes' subscriptions, services, clients and timers, then call back.
+Executors: wait for the nodes' entities, then call back; tasks; time.sleep.
 
 A wait blocks the worker in Atomics.wait on the process' doorbell until a
-message arrives or the next timer is due: nothing polls. spin_once runs
-every callback that is ready after one wait (rclpy runs one).
-MultiThreadedExecutor is accepted and runs on this one thread.
+message arrives, a timer is due or a guard condition was triggered: nothing
+polls. spin_once runs every callback that is ready after one wait (rclpy
+runs one), then resumes the tasks (coroutine callbacks, rclpy.task.Task).
+
+Pyodide has no threads here: MultiThreadedExecutor runs on this one thread,
+and where a thread of rclpy's would block, in ``time.sleep`` inside a
+callback, it runs the other callbacks that are ready meanwhile, except
+those of a busy MutuallyExclusiveCallbackGroup (rclpy.callback_groups).
+So an action's execute callback that sleeps still hears its cancel
+request, as with rclpy's thread pool. Outside of that, ``time.sleep``
+blocks in an Atomics wait (Pyodide's own spins the CPU).
 """
 
+import inspect
 import time
 
 from rclpy._bus import bus
 from rclpy._bus import handles_to_js
 from rclpy.context import default_context
+from rclpy.task import Task
+
+"""The tasks of this process: every executor resumes them (one thread)."""
+_TASKS = []
+"""The executors inside a callback, innermost last (for time.sleep)."""
+_DISPATCHING = []
 
 
 class ExternalShutdownException(Exception):
     """The context was shut down while spinning."""
+
+
+class ShutdownException(Exception):
+    """The executor was shut down."""
+
+
+def create_task(callback, *args, **kwargs):
+    """Schedule ``callback(*args, **kwargs)`` (or a coroutine) as a Task; returns it."""
+    task = Task(callback, args, kwargs)
+    _TASKS.append(task)
+    return task
+
+
+def _wait(timeout_sec):
+    """Block for at most ``timeout_sec`` (None: until the doorbell rings)."""
+    bus.wait(handles_to_js([]), handles_to_js([]),
+             -1 if timeout_sec is None else max(0.0, timeout_sec) * 1000.0)
+
+
+def sleep(seconds):
+    """Do what time.sleep does (this module installs it as time.sleep; see above)."""
+    if seconds < 0:
+        raise ValueError('sleep length must be non-negative')
+    end = time.monotonic() + seconds
+    executor = _DISPATCHING[-1] if _DISPATCHING else None
+    while True:
+        left = end - time.monotonic()
+        if left <= 0:
+            return
+        if isinstance(executor, MultiThreadedExecutor) and executor.context.ok():
+            executor.spin_once(timeout_sec=left)
+        else:
+            _wait(left)
+
+
+time.sleep = sleep
 
 
 class Executor:
@@ -34,6 +85,7 @@ class Executor:
         if node in self._nodes:
             return False
         self._nodes.append(node)
+        node.executor = self
         return True
 
     def remove_node(self, node):
@@ -45,10 +97,17 @@ class Executor:
         """Return the nodes."""
         return list(self._nodes)
 
+    def create_task(self, callback, *args, **kwargs):
+        """Schedule a callback or coroutine as a Task; returns it."""
+        return create_task(callback, *args, **kwargs)
+
     def shutdown(self, timeout_sec=None):
         """Forget the nodes."""
         self._nodes = []
         return True
+
+    def wake(self):
+        """Nothing to wake: the only thread is the caller."""
 
     def spin(self):
         """Spin until the context is shut down."""
@@ -64,15 +123,26 @@ class Executor:
                 return
             self.spin_once(timeout_sec=left)
 
+    def spin_once_until_future_complete(self, future, timeout_sec=None):
+        """Spin once, unless ``future`` is done."""
+        if not future.done():
+            self.spin_once(timeout_sec=timeout_sec)
+
     def spin_once(self, timeout_sec=None):
         """Wait for work (at most ``timeout_sec``; None: until there is some) and do it."""
+        self._resume_tasks()
+        may_run = self._may_run
         nodes = [n for n in self._nodes if n._handle is not None]
-        subscriptions = [s for n in nodes for s in n.subscriptions if s._handle is not None]
-        services = [s for n in nodes for s in n.services if s._handle is not None]
-        clients = [c for n in nodes for c in n.clients if c._handle is not None]
-        timers = [t for n in nodes for t in n.timers if not t.is_canceled()]
+        subscriptions = [s for n in nodes for s in n.subscriptions
+                         if s._handle is not None and may_run(s)]
+        services = [s for n in nodes for s in n.services if s._handle is not None and may_run(s)]
+        clients = [c for n in nodes for c in n.clients if c._handle is not None and may_run(c)]
+        timers = [t for n in nodes for t in n.timers if not t.is_canceled() and may_run(t)]
+        guards = [g for n in nodes for g in n.guards if g._triggered and may_run(g)]
         now = time.monotonic()
         wait = -1.0 if timeout_sec is None or timeout_sec < 0 else timeout_sec
+        if guards:
+            wait = 0.0
         if timers:
             until_timer = max(0.0, min(t._next for t in timers) - now)
             wait = until_timer if wait < 0 else min(wait, until_timer)
@@ -82,27 +152,84 @@ class Executor:
                  + ['client'] * len(clients))
         ready = list(bus.wait(handles_to_js(e._handle for e in entities), handles_to_js(kinds),
                               timeout_ms))
+        for guard in guards:
+            guard._triggered = False
+            self._call(guard, guard.callback)
         for subscription, flag in zip(subscriptions, ready):
-            if not flag:
-                continue
-            while subscription._handle is not None:
+            while flag and subscription._handle is not None and may_run(subscription):
                 msg = subscription._take()
                 if msg is None:
                     break
-                subscription.callback(msg)
+                self._call(subscription, subscription.callback, msg)
         offset = len(subscriptions)
         for service, flag in zip(services, ready[offset:offset + len(services)]):
-            while flag and service._handle is not None and service._serve_one():
-                pass
+            while flag and service._handle is not None and may_run(service):
+                taken = service._take_request()
+                if taken is None:
+                    break
+                request, request_id = taken
+                self._call(service, service.callback, request, service.srv_type.Response(),
+                           done=lambda response, s=service, i=request_id: s._respond(i, response))
         offset += len(services)
         for client, flag in zip(clients, ready[offset:]):
             while flag and client._handle is not None and client._take_one():
                 pass
         now = time.monotonic()
         for timer in timers:
-            if timer._due(now):
+            if timer._due(now) and may_run(timer):
                 timer._advance(now)
-                timer.callback()
+                self._call(timer, timer.callback)
+        self._resume_tasks()
+
+    def _may_run(self, entity):
+        group = getattr(entity, 'callback_group', None)
+        return group is None or group.can_execute(entity)
+
+    def _call(self, entity, callback, *args, done=None):
+        """Run a callback in its group; a coroutine becomes a task; ``done(result)`` after."""
+        group = getattr(entity, 'callback_group', None)
+        if group is not None and not group.beginning_execution(entity):
+            return
+        _DISPATCHING.append(self)
+        try:
+            result = callback(*args)
+        finally:
+            _DISPATCHING.pop()
+            if group is not None:
+                group.ending_execution(entity)
+        if inspect.iscoroutine(result):
+            task = create_task(result)
+            task._group = (group, entity)
+            if done is not None:
+                task.add_done_callback(lambda t: done(t.result()) if t.exception() is None
+                                       else None)
+            self._step(task)
+        elif done is not None:
+            done(result)
+
+    def _step(self, task):
+        group, entity = getattr(task, '_group', (None, None))
+        if group is not None and not group.beginning_execution(entity):
+            return
+        _DISPATCHING.append(self)
+        try:
+            task()
+        finally:
+            _DISPATCHING.pop()
+            if group is not None:
+                group.ending_execution(entity)
+
+    def _resume_tasks(self):
+        """Resume the tasks that are not done and not running; again while that changed any."""
+        for _ in range(100):
+            count = len(_TASKS)
+            pending = [t for t in _TASKS if not t.done() and not t.executing()]
+            for task in pending:
+                self._step(task)
+            changed = len(_TASKS) > count or any(t.done() for t in pending)
+            _TASKS[:] = [t for t in _TASKS if not t.done()]
+            if not changed:
+                break
 
 
 class SingleThreadedExecutor(Executor):
@@ -110,8 +237,9 @@ class SingleThreadedExecutor(Executor):
 
 
 class MultiThreadedExecutor(Executor):
-    """Accepted for compatibility: runs on this one thread (Pyodide has no threads here)."""
+    """rclpy's thread pool on this one thread: see the module's comment."""
 
     def __init__(self, num_threads=None, *, context=None):
-        """Create the executor; ``num_threads`` is ignored."""
+        """Create the executor; ``num_threads`` is accepted (one thread runs the callbacks)."""
         super().__init__(context=context)
+        self._num_threads = num_threads

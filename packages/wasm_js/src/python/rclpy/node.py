@@ -11,6 +11,7 @@ from rclpy import parameter_service
 from rclpy._bus import bus
 from rclpy._bus import plain_to_js
 from rclpy._graph import NodeNameNonExistentError  # noqa: F401 (rclpy's name for it)
+from rclpy.callback_groups import MutuallyExclusiveCallbackGroup
 from rclpy.clock import ROSClock
 from rclpy.context import default_context
 from rclpy.logging import RcutilsLogger
@@ -112,18 +113,21 @@ class Service(_ServiceEndpoint):
         super().__init__(node, srv_type, srv_name, handle, qos_profile)
         self.callback = callback
 
-    def _serve_one(self):
+    def _take_request(self):
+        """Take the next request: (request, its id for _respond), or None."""
         taken = bus.take_request(self._handle, self._request)
         if taken is None:
-            return False
-        request = self.srv_type.Request._from_plain(taken.value.to_py())
-        response = self.callback(request, self.srv_type.Response())
+            return None
+        return self.srv_type.Request._from_plain(taken.value.to_py()), taken.id
+
+    def _respond(self, request_id, response):
+        """Send what the callback returned to the client that asked."""
         if not isinstance(response, self.srv_type.Response):
             raise TypeError(f'the callback of service {self.srv_name!r} returned '
                             f'{type(response)!r}, not a {self.srv_type.Response}')
-        bus.send_response(self._handle, taken.id, self._response,
-                          plain_to_js(response._to_plain()))
-        return True
+        if self._handle is not None:
+            bus.send_response(self._handle, request_id, self._response,
+                              plain_to_js(response._to_plain()))
 
 
 class Client(_ServiceEndpoint):
@@ -165,11 +169,12 @@ class Client(_ServiceEndpoint):
 class Timer:
     """Calls ``callback()`` every ``timer_period_ns`` (monotonic clock)."""
 
-    def __init__(self, callback, timer_period_sec):
+    def __init__(self, callback, timer_period_sec, callback_group=None):
         """Made by Node.create_timer; first call one period from now."""
         if timer_period_sec <= 0:
             raise ValueError(f'timer period must be > 0, got {timer_period_sec}')
         self.callback = callback
+        self.callback_group = callback_group
         self.timer_period_ns = int(timer_period_sec * 1e9)
         self._period = timer_period_sec
         self._next = time.monotonic() + timer_period_sec
@@ -205,6 +210,24 @@ class Timer:
         self._next += self._period
         if self._next <= now:  # late by more than a period: do not call in a burst
             self._next = now + self._period
+
+
+class GuardCondition:
+    """Calls ``callback()`` once while the node spins after each trigger()."""
+
+    def __init__(self, callback, callback_group=None):
+        """Made by Node.create_guard_condition."""
+        self.callback = callback
+        self.callback_group = callback_group
+        self._triggered = False
+
+    def trigger(self):
+        """Make the next spin call the callback (this thread spins: no wake-up needed)."""
+        self._triggered = True
+
+    def destroy(self):
+        """Never call back again."""
+        self._triggered = False
 
 
 def _expand(name, namespace, node_name, what):
@@ -245,6 +268,11 @@ class Node:
         self.timers = []
         self.services = []
         self.clients = []
+        self.guards = []
+        self._action_servers = []
+        self._action_clients = []
+        self.executor = None
+        self._default_callback_group = MutuallyExclusiveCallbackGroup()
         self._parameters = {}
         self._parameter_callbacks = []
         self._overrides = self.context.parameter_overrides(node_name, cli_args)
@@ -254,6 +282,17 @@ class Node:
             self._parameter_service = parameter_service.ParameterService(self)
         from rclpy.time_source import TimeSource
         self._time_source = TimeSource(self)
+
+    @property
+    def default_callback_group(self):
+        """Return the group of the entities created without one (mutually exclusive)."""
+        return self._default_callback_group
+
+    def _group(self, entity, callback_group):
+        group = callback_group or self._default_callback_group
+        entity.callback_group = group
+        group.add_entity(entity)
+        return entity
 
     def get_name(self):
         """Return the node's name."""
@@ -291,39 +330,56 @@ class Node:
         self.publishers.append(publisher)
         return publisher
 
-    def create_subscription(self, msg_type, topic, callback, qos_profile, **kwargs):
+    def create_subscription(self, msg_type, topic, callback, qos_profile, *,
+                            callback_group=None, **kwargs):
         """Create a subscription that calls ``callback(msg)`` while the node spins."""
         qos = profile_of(qos_profile)
         type_name = _messages.type_name(msg_type)
         name = self.resolve_topic_name(topic)
         handle = bus.create_subscription(self._handle, name, type_name, qos.to_bus())
         subscription = Subscription(self, msg_type, name, callback, handle, qos)
+        self._group(subscription, callback_group)
         self.subscriptions.append(subscription)
         return subscription
 
     def create_timer(self, timer_period_sec, callback, callback_group=None, clock=None):
         """Create a timer that calls ``callback()`` every period while the node spins."""
-        timer = Timer(callback, timer_period_sec)
+        timer = self._group(Timer(callback, timer_period_sec), callback_group)
         self.timers.append(timer)
         return timer
 
+    def create_guard_condition(self, callback, callback_group=None):
+        """Create a guard condition: ``trigger()`` makes the next spin call ``callback()``."""
+        guard = self._group(GuardCondition(callback), callback_group)
+        self.guards.append(guard)
+        return guard
+
+    def destroy_guard_condition(self, guard):
+        """Destroy a guard condition of this node."""
+        guard.destroy()
+        if guard in self.guards:
+            self.guards.remove(guard)
+        return True
+
     def create_service(self, srv_type, srv_name, callback, *,
-                       qos_profile=qos_profile_services_default, **kwargs):
+                       qos_profile=qos_profile_services_default, callback_group=None, **kwargs):
         """Create a service server; ``callback(request, response)`` returns the response."""
         name = self._resolve_service_name(srv_name)
         handle = bus.create_service(self._handle, name, _messages.type_name(srv_type),
                                     qos_profile.to_bus())
         service = Service(self, srv_type, name, callback, handle, qos_profile)
+        self._group(service, callback_group)
         self.services.append(service)
         return service
 
     def create_client(self, srv_type, srv_name, *, qos_profile=qos_profile_services_default,
-                      **kwargs):
+                      callback_group=None, **kwargs):
         """Create a service client."""
         name = self._resolve_service_name(srv_name)
         handle = bus.create_client(self._handle, name, _messages.type_name(srv_type),
                                    qos_profile.to_bus())
         client = Client(self, srv_type, name, handle, qos_profile)
+        self._group(client, callback_group)
         self.clients.append(client)
         return client
 
@@ -507,6 +563,10 @@ class Node:
 
     def destroy_node(self):
         """Leave the graph with every endpoint of this node."""
+        for action in list(self._action_servers) + list(self._action_clients):
+            action.destroy()
+        for guard in list(self.guards):
+            self.destroy_guard_condition(guard)
         for publisher in list(self.publishers):
             self.destroy_publisher(publisher)
         for subscription in list(self.subscriptions):

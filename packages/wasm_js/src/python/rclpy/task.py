@@ -1,7 +1,15 @@
 # Copyright 2026 colcon-wasm contributors
 # Licensed under the Apache License, Version 2.0
 
-"""rclpy.task: Future (done, result, exception, callbacks)."""
+"""
+rclpy.task: Future (done, result, exception, callbacks, ``await``) and Task.
+
+A Task runs a callback that is a coroutine (``async def``) step by step on
+the executor: each ``await`` of a pending Future hands the thread back, and
+the executor resumes the task once per spin until it is done, as rclpy's.
+"""
+
+import inspect
 
 
 class Future:
@@ -58,7 +66,52 @@ class Future:
         else:
             self._callbacks.append(callback)
 
+    def __await__(self):
+        """Wait (in a coroutine run by the executor) until done; return the result."""
+        while not self.done():
+            yield
+        return self.result()
+
     def _run_callbacks(self):
         callbacks, self._callbacks = self._callbacks, []
         for callback in callbacks:
             callback(self)
+
+
+class Task(Future):
+    """A callback run by the executor; a coroutine one resumes at each of its awaits."""
+
+    def __init__(self, handler, args=None, kwargs=None):
+        """Wrap ``handler(*args, **kwargs)`` (a function, a coroutine function or a coroutine)."""
+        super().__init__()
+        self._handler = handler
+        self._args = args or ()
+        self._kwargs = kwargs or {}
+        self._coroutine = handler if inspect.iscoroutine(handler) else None
+        self._executing = False
+
+    def executing(self):
+        """Return True while a step of the task runs (it is on the stack)."""
+        return self._executing
+
+    def __call__(self):
+        """Run the task until it is done or awaits something pending; exceptions propagate."""
+        if self.done() or self._executing:
+            return
+        self._executing = True
+        try:
+            if self._coroutine is None:
+                result = self._handler(*self._args, **self._kwargs)
+                if not inspect.iscoroutine(result):
+                    self.set_result(result)
+                    return
+                self._coroutine = result
+            try:
+                self._coroutine.send(None)
+            except StopIteration as e:
+                self.set_result(e.value)
+        except BaseException as e:
+            self.set_exception(e)
+            raise
+        finally:
+            self._executing = False
