@@ -84,6 +84,9 @@ def test_python_services_and_clients_talk_to_cpp_ones(install):
     for a in (1, 20, 2 ** 40):
         assert (f'[py_client]: Result of add_two_ints: for {a} + {2 * a} = '
                 f'{3 * a}') in out, out[-6000:]
+    assert '[py_client]: Synchronous call: 7 + 5 = 12' in out, out[-6000:]
+    took = re.search(r'\[py_client\]: Rate: 5 periods of 50 ms took ([\d.]+) s', out)
+    assert took and float(took.group(1)) >= 0.2, out[-6000:]
     assert '[INFO] [add_client-4]: process has finished cleanly' in out
     assert code == 0, out[-3000:]
 

@@ -1,6 +1,7 @@
-"""A Python AddTwoInts client of /cpp_add_two_ints: three calls, then it exits."""
+"""A Python AddTwoInts client of /cpp_add_two_ints: three calls, a synchronous one, a Rate."""
 
 import sys
+import time
 
 import rclpy
 from rclpy.node import Node
@@ -23,6 +24,14 @@ def main():
             sys.exit(4)
         node.get_logger().info(f'Result of add_two_ints: for {a} + {2 * a} = '
                                f'{future.result().sum}')
+    # the synchronous call spins the node until the response is there
+    response = client.call(AddTwoInts.Request(a=7, b=5))
+    node.get_logger().info(f'Synchronous call: 7 + 5 = {response.sum}')
+    rate = node.create_rate(20)
+    start = time.monotonic()
+    for _ in range(5):
+        rate.sleep()
+    node.get_logger().info(f'Rate: 5 periods of 50 ms took {time.monotonic() - start:.3f} s')
     rclpy.shutdown()
 
 

@@ -92,6 +92,8 @@ class Executor:
         """Remove a node."""
         if node in self._nodes:
             self._nodes.remove(node)
+            if getattr(node, 'executor', None) is self:
+                node.executor = None
 
     def get_nodes(self):
         """Return the nodes."""
@@ -103,7 +105,8 @@ class Executor:
 
     def shutdown(self, timeout_sec=None):
         """Forget the nodes."""
-        self._nodes = []
+        for node in list(self._nodes):
+            self.remove_node(node)
         return True
 
     def wake(self):

@@ -147,6 +147,26 @@ class Client(_ServiceEndpoint):
         self._pending[int(sequence)] = future
         return future
 
+    def call(self, request, timeout_sec=None):
+        """
+        Send a request and wait for the response (None after ``timeout_sec``).
+
+        There is no other thread to wait for: this spins the node's executor
+        (rclpy's global one when the node is in none) until the response is
+        there, so the node's other callbacks run meanwhile.
+        """
+        future = self.call_async(request)
+        executor = self.node.executor
+        if executor is None:
+            import rclpy
+            rclpy.spin_until_future_complete(self.node, future, timeout_sec=timeout_sec)
+        else:
+            executor.spin_until_future_complete(future, timeout_sec=timeout_sec)
+        if not future.done():
+            self._pending = {k: f for k, f in self._pending.items() if f is not future}
+            return None
+        return future.result()
+
     def service_is_ready(self):
         """Return True when a server is matched."""
         return bool(bus.server_available(self._handle))
@@ -210,6 +230,39 @@ class Timer:
         self._next += self._period
         if self._next <= now:  # late by more than a period: do not call in a burst
             self._next = now + self._period
+
+
+class Rate:
+    """
+    Sleeps until the next period of a frequency (steady clock).
+
+    ``sleep()`` uses time.sleep (rclpy.executors): inside a callback of a
+    MultiThreadedExecutor the other ready callbacks run meanwhile; elsewhere
+    it blocks, as rclpy's blocks its thread.
+    """
+
+    def __init__(self, frequency):
+        """Made by Node.create_rate; the first period starts now."""
+        if frequency <= 0:
+            raise ValueError(f'frequency must be > 0, got {frequency}')
+        self._period = 1.0 / frequency
+        self._next = time.monotonic() + self._period
+        self._destroyed = False
+
+    def sleep(self):
+        """Sleep until the end of the current period; a late call starts a new period now."""
+        if self._destroyed:
+            raise RuntimeError('Rate is destroyed')
+        left = self._next - time.monotonic()
+        if left > 0:
+            time.sleep(left)
+            self._next += self._period
+        else:
+            self._next = time.monotonic() + self._period
+
+    def destroy(self):
+        """Refuse further sleeps."""
+        self._destroyed = True
 
 
 class GuardCondition:
@@ -347,6 +400,10 @@ class Node:
         timer = self._group(Timer(callback, timer_period_sec), callback_group)
         self.timers.append(timer)
         return timer
+
+    def create_rate(self, frequency, clock=None):
+        """Create a Rate: ``sleep()`` waits until the next period of ``frequency`` Hz."""
+        return Rate(frequency)
 
     def create_guard_condition(self, callback, callback_group=None):
         """Create a guard condition: ``trigger()`` makes the next spin call ``callback()``."""
