@@ -146,3 +146,31 @@ def test_use_sim_time_follows_clock(install):
                             '--python', DATA / 'sim_time.py')
     assert '[sim]: sim time follows /clock' in out, out[-6000:]
     assert code == 0, out[-3000:]
+
+
+def test_an_import_of_a_native_only_module_names_its_package(install, tmp_path):
+    script = tmp_path / 'uses_tf2.py'
+    script.write_text('import rclpy\nrclpy.init()\nimport numpy  # noqa\n')
+    code, out = colcon_wasm('run', '--install-base', install, '--duration', 60,
+                            '--python', script)
+    assert ("ModuleNotFoundError: No module named 'numpy' in colcon-wasm's Python: it comes "
+            "from the package 'numpy', a package of Pyodide's full distribution") in out, \
+        out[-4000:]
+    assert f'[{script.stem}-1] Traceback (most recent call last):' in out, out[-4000:]
+    assert re.search(r'process has died \[exit code 1, Python exception: ModuleNotFoundError',
+                     out), out[-4000:]
+    assert code == 1, out[-4000:]
+
+
+def test_the_native_only_modules_are_those_the_recipe_skips():
+    import importlib.util
+    from colcon_wasm.recipe import load_recipe
+    path = REPO / 'packages' / 'wasm_js' / 'src' / 'python' / 'rclpy' / '_native_only.py'
+    spec = importlib.util.spec_from_file_location('_native_only', path)
+    table = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(table)
+    recipe = load_recipe()
+    for module, (package, why) in table.MODULES.items():
+        skipped = recipe.skip_reason(package) is not None
+        # 'skips the package' only for a package the recipe skips, and the reverse
+        assert skipped == ('skips the package' in why), (module, package, why)

@@ -13,6 +13,7 @@ export const RCLPY_FILES = Object.freeze([
   'rclpy/_bus.py',
   'rclpy/_graph.py',
   'rclpy/_messages.py',
+  'rclpy/_native_only.py',
   'rclpy/action/__init__.py',
   'rclpy/action/client.py',
   'rclpy/action/server.py',

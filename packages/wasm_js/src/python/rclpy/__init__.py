@@ -11,6 +11,7 @@ colcon-wasm.
 """
 
 from rclpy import _messages
+from rclpy import _native_only
 from rclpy._bus import bus as _bus
 from rclpy.context import default_context
 from rclpy.executors import SingleThreadedExecutor
@@ -20,6 +21,7 @@ __all__ = ['init', 'shutdown', 'try_shutdown', 'ok', 'spin', 'spin_once',
 
 _messages.load_descriptions(_bus.types_json())
 _messages.install_finder()
+_native_only.install_finder()
 
 _executor = None
 
