@@ -1,4 +1,4 @@
-"""use_sim_time: a node's ROS clock follows /clock while use_sim_time is true; exits 0."""
+"""use_sim_time: a node's ROS clock and timers follow /clock while use_sim_time is true."""
 
 import time
 
@@ -25,6 +25,9 @@ assert sim.get_clock().now() == Time(nanoseconds=0, clock_type=ClockType.ROS_TIM
 executor = SingleThreadedExecutor()
 executor.add_node(sim)
 executor.add_node(wall)
+# a timer of the sim node counts ROS time: it fires as /clock advances, 3 s of /clock apart
+fired = []
+sim.create_timer(3.0, lambda: fired.append(sim.get_clock().now().nanoseconds // 10 ** 9))
 clock = wall.create_publisher(Clock, '/clock', 10)
 deadline = time.monotonic() + 30
 while not clock.get_subscription_count() and time.monotonic() < deadline:
@@ -38,6 +41,8 @@ want = Time(seconds=1009, nanoseconds=500, clock_type=ClockType.ROS_TIME)
 while sim.get_clock().now() != want and time.monotonic() < deadline:
     executor.spin_once(timeout_sec=0.1)
 assert sim.get_clock().now() == want, sim.get_clock().now()
+# due at ROS time 3 s (created before any /clock): the first /clock fires it, then 3 s apart
+assert fired == [1000, 1003, 1006, 1009], fired
 assert abs(wall.get_clock().now().nanoseconds - time.time_ns()) < 5 * 10 ** 9
 assert ('/clock', ['rosgraph_msgs/msg/Clock']) in \
     sim.get_subscriber_names_and_types_by_node('sim', '/')

@@ -142,13 +142,12 @@ class Executor:
         clients = [c for n in nodes for c in n.clients if c._handle is not None and may_run(c)]
         timers = [t for n in nodes for t in n.timers if not t.is_canceled() and may_run(t)]
         guards = [g for n in nodes for g in n.guards if g._triggered and may_run(g)]
-        now = time.monotonic()
         wait = -1.0 if timeout_sec is None or timeout_sec < 0 else timeout_sec
         if guards:
             wait = 0.0
-        if timers:
-            until_timer = max(0.0, min(t._next for t in timers) - now)
-            wait = until_timer if wait < 0 else min(wait, until_timer)
+        lefts = [left for left in (t._seconds_left() for t in timers) if left is not None]
+        if lefts:
+            wait = min(lefts) if wait < 0 else min(wait, min(lefts))
         timeout_ms = -1 if wait < 0 else wait * 1000.0
         entities = subscriptions + services + clients
         kinds = (['subscription'] * len(subscriptions) + ['service'] * len(services)
@@ -177,10 +176,9 @@ class Executor:
         for client, flag in zip(clients, ready[offset:]):
             while flag and client._handle is not None and client._take_one():
                 pass
-        now = time.monotonic()
         for timer in timers:
-            if timer._due(now) and may_run(timer):
-                timer._advance(now)
+            if timer._due() and may_run(timer):
+                timer._advance()
                 self._call(timer, timer.callback)
         self._resume_tasks()
 

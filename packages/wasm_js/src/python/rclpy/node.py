@@ -187,9 +187,17 @@ class Client(_ServiceEndpoint):
 
 
 class Timer:
-    """Calls ``callback()`` every ``timer_period_ns`` (monotonic clock)."""
+    """
+    Calls ``callback()`` every ``timer_period_ns`` of its clock.
 
-    def __init__(self, callback, timer_period_sec, callback_group=None):
+    The clock is the node's ROS clock unless another is given, as in rclpy:
+    while the node uses simulated time (``use_sim_time``), the timer counts
+    the time of ``/clock`` (it fires as ``/clock`` messages arrive, never
+    before the first one), else the steady clock. A switch between the two
+    starts a period anew.
+    """
+
+    def __init__(self, callback, timer_period_sec, callback_group=None, clock=None):
         """Made by Node.create_timer; first call one period from now."""
         if timer_period_sec <= 0:
             raise ValueError(f'timer period must be > 0, got {timer_period_sec}')
@@ -197,8 +205,29 @@ class Timer:
         self.callback_group = callback_group
         self.timer_period_ns = int(timer_period_sec * 1e9)
         self._period = timer_period_sec
-        self._next = time.monotonic() + timer_period_sec
+        self._clock = clock
+        self._simulated, now = self._now()
+        self._next = now + timer_period_sec
         self._canceled = False
+
+    @property
+    def clock(self):
+        """Return the clock the timer counts (None: the steady clock)."""
+        return self._clock
+
+    def _now(self):
+        """Return (simulated?, seconds): the ROS clock's /clock time, else the steady clock."""
+        if self._clock is not None and getattr(self._clock, 'ros_time_is_active', False):
+            return True, self._clock.now().nanoseconds / 1e9
+        return False, time.monotonic()
+
+    def _current(self):
+        """Return the time now on the timer's base; a change of base starts a period."""
+        simulated, now = self._now()
+        if simulated != self._simulated:
+            self._simulated = simulated
+            self._next = now + self._period
+        return now
 
     def cancel(self):
         """Stop calling back."""
@@ -207,7 +236,7 @@ class Timer:
     def reset(self):
         """Start a period from now."""
         self._canceled = False
-        self._next = time.monotonic() + self._period
+        self._next = self._current() + self._period
 
     def is_canceled(self):
         """Return True when canceled."""
@@ -217,16 +246,22 @@ class Timer:
         """Return nanoseconds until the next call (None when canceled)."""
         if self._canceled:
             return None
-        return max(0, int((self._next - time.monotonic()) * 1e9))
+        return max(0, int((self._next - self._current()) * 1e9))
 
     def destroy(self):
         """Stop calling back."""
         self.cancel()
 
-    def _due(self, now):
-        return not self._canceled and now >= self._next
+    def _seconds_left(self):
+        """Return the steady seconds to wait for it, or None (simulated: wait for /clock)."""
+        now = self._current()
+        return None if self._simulated else max(0.0, self._next - now)
 
-    def _advance(self, now):
+    def _due(self):
+        return not self._canceled and self._current() >= self._next
+
+    def _advance(self):
+        now = self._current()
         self._next += self._period
         if self._next <= now:  # late by more than a period: do not call in a burst
             self._next = now + self._period
@@ -397,7 +432,8 @@ class Node:
 
     def create_timer(self, timer_period_sec, callback, callback_group=None, clock=None):
         """Create a timer that calls ``callback()`` every period while the node spins."""
-        timer = self._group(Timer(callback, timer_period_sec), callback_group)
+        timer = self._group(Timer(callback, timer_period_sec, clock=clock or self._clock),
+                            callback_group)
         self.timers.append(timer)
         return timer
 
