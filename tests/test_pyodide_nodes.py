@@ -174,3 +174,14 @@ def test_the_native_only_modules_are_those_the_recipe_skips():
         skipped = recipe.skip_reason(package) is not None
         # 'skips the package' only for a package the recipe skips, and the reverse
         assert skipped == ('skips the package' in why), (module, package, why)
+
+
+def test_qos_events_deadline_liveliness_and_incompatible_qos(install):
+    code, out = colcon_wasm('run', '--install-base', install, '--duration', 60,
+                            '--python', DATA / 'qos_events.py')
+    assert '[py_events]: QoS events heard' in out, out[-4000:]
+    # the best-effort publisher gets rclpy's default incompatible-QoS callback: a warning
+    assert ('[WARN] [' in out and '[py_events]: New subscription discovered on topic '
+            "'/mismatch', requesting incompatible QoS. No messages will be sent to it. Last "
+            'incompatible policy: RELIABILITY') in out, out[-4000:]
+    assert code == 0, out[-4000:]

@@ -97,7 +97,9 @@ async function importPyodide(msg) {
   return { loadPyodide, indexURL: base };
 }
 
-const WAIT_KINDS = { subscription: WaitKind.SUBSCRIPTION, service: WaitKind.SERVICE, client: WaitKind.CLIENT };
+const WAIT_KINDS = {
+  subscription: WaitKind.SUBSCRIPTION, service: WaitKind.SERVICE, client: WaitKind.CLIENT, event: WaitKind.EVENT,
+};
 
 /** The `_colcon_wasm_bus` module: what rclpy calls (plain values in, plain values out). */
 function busModule(client, registry, context, settle) {
@@ -181,21 +183,32 @@ function busModule(client, registry, context, settle) {
     matched_count(ep) {
       return client.matchedCount(ep);
     },
+    /** A QoS event's status, its changes reset: {changed, total, change, alive, ...}. */
+    event_status(ep, type) {
+      return client.eventStatus(ep, type, true);
+    },
+    assert_liveliness(ep) {
+      client.assertLiveliness(ep);
+    },
     /**
      * Block until one of the endpoints has something to take or the timeout
-     * passes (< 0: forever). `kinds`: 'subscription', 'service' or 'client',
-     * one per handle. Returns the ready flags, one per handle.
+     * passes (< 0: forever). `kinds`: 'subscription', 'service', 'client'
+     * or 'event', one per handle; `eventTypes`: the EventType of each 'event' (0 for
+     * the others). Returns the ready flags, one per handle.
      */
-    wait(handles, kinds, timeoutMs) {
+    wait(handles, kinds, timeoutMs, eventTypes) {
       const list = Array.from(handles);
       const kindList = Array.from(kinds);
+      const types = eventTypes ? Array.from(eventTypes) : [];
       const n = list.length;
       if (items.length < n * WAIT_ITEM_WORDS) items = new Int32Array(n * WAIT_ITEM_WORDS);
       for (let i = 0; i < n; i++) {
         const o = i * WAIT_ITEM_WORDS;
-        items[o] = WAIT_KINDS[kindList[i]];
+        const kind = WAIT_KINDS[kindList[i]];
+        if (kind === undefined) throw new TypeError(`wait: unknown item kind ${JSON.stringify(kindList[i])}`);
+        items[o] = kind;
         items[o + 1] = list[i];
-        items[o + 2] = 0;
+        items[o + 2] = types[i] || 0;
         items[o + 3] = 0;
       }
       if (n === 0) {

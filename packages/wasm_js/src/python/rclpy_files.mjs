@@ -27,6 +27,7 @@ export const RCLPY_FILES = Object.freeze([
   'rclpy/parameter.py',
   'rclpy/parameter_service.py',
   'rclpy/qos.py',
+  'rclpy/qos_event.py',
   'rclpy/task.py',
   'rclpy/time.py',
   'rclpy/time_source.py',

@@ -8,6 +8,7 @@ A wait blocks the worker in Atomics.wait on the process' doorbell until a
 message arrives, a timer is due or a guard condition was triggered: nothing
 polls. spin_once runs every callback that is ready after one wait (rclpy
 runs one), then resumes the tasks (coroutine callbacks, rclpy.task.Task).
+QoS events (rclpy.qos_event) are items of the same wait.
 
 Pyodide has no threads here: MultiThreadedExecutor runs on this one thread,
 and where a thread of rclpy's would block, in ``time.sleep`` inside a
@@ -142,6 +143,9 @@ class Executor:
         clients = [c for n in nodes for c in n.clients if c._handle is not None and may_run(c)]
         timers = [t for n in nodes for t in n.timers if not t.is_canceled() and may_run(t)]
         guards = [g for n in nodes for g in n.guards if g._triggered and may_run(g)]
+        events = [h for n in nodes for e in n.publishers + n.subscriptions
+                  if e._handle is not None for h in getattr(e, 'event_handlers', ())
+                  if may_run(h)]
         wait = -1.0 if timeout_sec is None or timeout_sec < 0 else timeout_sec
         if guards:
             wait = 0.0
@@ -149,11 +153,12 @@ class Executor:
         if lefts:
             wait = min(lefts) if wait < 0 else min(wait, min(lefts))
         timeout_ms = -1 if wait < 0 else wait * 1000.0
-        entities = subscriptions + services + clients
+        entities = subscriptions + services + clients + events
         kinds = (['subscription'] * len(subscriptions) + ['service'] * len(services)
-                 + ['client'] * len(clients))
+                 + ['client'] * len(clients) + ['event'] * len(events))
+        event_types = [0] * (len(entities) - len(events)) + [h.event_type for h in events]
         ready = list(bus.wait(handles_to_js(e._handle for e in entities), handles_to_js(kinds),
-                              timeout_ms))
+                              timeout_ms, handles_to_js(event_types)))
         for guard in guards:
             guard._triggered = False
             self._call(guard, guard.callback)
@@ -173,9 +178,14 @@ class Executor:
                 self._call(service, service.callback, request, service.srv_type.Response(),
                            done=lambda response, s=service, i=request_id: s._respond(i, response))
         offset += len(services)
-        for client, flag in zip(clients, ready[offset:]):
+        for client, flag in zip(clients, ready[offset:offset + len(clients)]):
             while flag and client._handle is not None and client._take_one():
                 pass
+        offset += len(clients)
+        for handler, flag in zip(events, ready[offset:]):
+            status = handler._take() if flag and handler._handle is not None else None
+            if status is not None:
+                self._call(handler, handler.callback, status)
         for timer in timers:
             if timer._due() and may_run(timer):
                 timer._advance()

@@ -19,6 +19,8 @@ from rclpy.parameter import Parameter
 from rclpy.parameter import SetParametersResult
 from rclpy.qos import profile_of
 from rclpy.qos import qos_profile_services_default
+from rclpy.qos_event import PublisherEventCallbacks
+from rclpy.qos_event import SubscriptionEventCallbacks
 from rclpy.task import Future
 
 
@@ -84,6 +86,10 @@ class Publisher(_TopicEndpoint):
     def get_subscription_count(self):
         """Return the number of matched subscriptions."""
         return bus.matched_count(self._handle)
+
+    def assert_liveliness(self):
+        """Assert this publisher's liveliness (MANUAL_BY_TOPIC; publishing asserts it too)."""
+        bus.assert_liveliness(self._handle)
 
 
 class Subscription(_TopicEndpoint):
@@ -408,18 +414,22 @@ class Node:
         full = _expand(topic, self._namespace, self._name, 'topic')
         return self._remaps.get(full, full)
 
-    def create_publisher(self, msg_type, topic, qos_profile, **kwargs):
+    def create_publisher(self, msg_type, topic, qos_profile, *, callback_group=None,
+                         event_callbacks=None, **kwargs):
         """Create a publisher; ``qos_profile`` is a QoSProfile or a history depth."""
         qos = profile_of(qos_profile)
         type_name = _messages.type_name(msg_type)
         name = self.resolve_topic_name(topic)
         handle = bus.create_publisher(self._handle, name, type_name, qos.to_bus())
         publisher = Publisher(self, msg_type, name, handle, qos)
+        self._group(publisher, callback_group)
+        publisher.event_handlers = (event_callbacks or PublisherEventCallbacks()) \
+            .create_event_handlers(publisher)
         self.publishers.append(publisher)
         return publisher
 
     def create_subscription(self, msg_type, topic, callback, qos_profile, *,
-                            callback_group=None, **kwargs):
+                            callback_group=None, event_callbacks=None, **kwargs):
         """Create a subscription that calls ``callback(msg)`` while the node spins."""
         qos = profile_of(qos_profile)
         type_name = _messages.type_name(msg_type)
@@ -427,6 +437,8 @@ class Node:
         handle = bus.create_subscription(self._handle, name, type_name, qos.to_bus())
         subscription = Subscription(self, msg_type, name, callback, handle, qos)
         self._group(subscription, callback_group)
+        subscription.event_handlers = (event_callbacks or SubscriptionEventCallbacks()) \
+            .create_event_handlers(subscription)
         self.subscriptions.append(subscription)
         return subscription
 
