@@ -132,7 +132,7 @@ def test_a_python_action_server_serves_the_cpp_clients_feedback_result_and_cance
     # an rclcpp client that cancels after 3 s: the sleeping execute callback hears it
     code, out = launch(overlay, 'examples_rclpy_minimal_action_server/server',
                        'examples_rclcpp_minimal_action_client/'
-                       'action_client_not_composable_with_cancel', duration=15)
+                       'action_client_not_composable_with_cancel', duration=25)
     client = 'action_client_not_composable_with_cancel-2'
     assert log(out, 'server-1', 'minimal_action_server', 'Received cancel request'), out[-6000:]
     assert log(out, 'server-1', 'minimal_action_server', 'Goal canceled'), out[-6000:]
@@ -147,7 +147,7 @@ def test_a_python_action_client_drives_the_cpp_server_feedback_result_and_cancel
     # rclpy client (client.py: send_goal_async, feedback, get_result_async) -> rclcpp server
     code, out = launch(overlay, 'examples_rclcpp_minimal_action_server/'
                        'action_server_member_functions',
-                       'examples_rclpy_minimal_action_client/client', duration=25)
+                       'examples_rclpy_minimal_action_client/client', duration=35)
     feedback = log(out, 'client-2', 'minimal_action_client',
                    r"Received feedback: array\('i', \[([\d, ]+)\]\)")
     assert feedback[0] == '0, 1, 1' and feedback[-1] == '0, 1, 1, 2, 3, 5, 8, 13, 21, 34, 55', \
@@ -158,7 +158,7 @@ def test_a_python_action_client_drives_the_cpp_server_feedback_result_and_cancel
     # rclpy client_cancel.py cancels after 2 s
     code, out = launch(overlay, 'examples_rclcpp_minimal_action_server/'
                        'action_server_member_functions',
-                       'examples_rclpy_minimal_action_client/client_cancel', duration=10)
+                       'examples_rclpy_minimal_action_client/client_cancel', duration=25)
     assert log(out, 'action_server_member_functions-1', 'minimal_action_server',
                'Received request to cancel goal'), out[-6000:]
     assert log(out, 'client_cancel-2', 'minimal_action_client',
@@ -170,7 +170,7 @@ def test_a_python_action_client_drives_the_cpp_server_feedback_result_and_cancel
 
 def test_python_action_server_and_client_talk_to_each_other(overlay):
     code, out = launch(overlay, 'examples_rclpy_minimal_action_server/server',
-                       'examples_rclpy_minimal_action_client/client_cancel', duration=10)
+                       'examples_rclpy_minimal_action_client/client_cancel', duration=25)
     assert log(out, 'server-1', 'minimal_action_server', 'Goal canceled'), out[-6000:]
     assert log(out, 'client_cancel-2', 'minimal_action_client',
                'Goal successfully canceled'), out[-6000:]
@@ -178,7 +178,7 @@ def test_python_action_server_and_client_talk_to_each_other(overlay):
 
 def test_guard_condition_and_executor_examples(overlay):
     code, out = launch(overlay, 'examples_rclpy_guard_conditions/trigger_guard_condition',
-                       duration=15)
+                       duration=30)
     process = 'trigger_guard_condition-1'
     assert log(out, process, 'demo_guard_condition',
                'timer callback triggered guard condition'), out[-6000:]
@@ -188,7 +188,7 @@ def test_guard_condition_and_executor_examples(overlay):
     # composed (SingleThreadedExecutor: talker and listener) and callback_group
     # (MultiThreadedExecutor: two timers in one mutually exclusive group, and a listener)
     code, out = launch(overlay, 'examples_rclpy_executors/composed',
-                       'examples_rclpy_executors/callback_group', duration=20)
+                       'examples_rclpy_executors/callback_group', duration=25)
     assert log(out, 'composed-1', 'listener', 'I heard: "Hello World: 2"'), out[-6000:]
     published = log(out, 'callback_group-2', 'double_talker', r'Publishing: "Hello World: (\d+)"')
     # the two timers (1 s and 0.5 s) share one counter, one callback at a time
