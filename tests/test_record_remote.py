@@ -17,6 +17,7 @@ from pathlib import Path
 import re
 import socket
 import sys
+import time
 
 import pytest
 
@@ -27,6 +28,7 @@ from rosbridge_launch import BackgroundLaunch  # noqa: E402
 from test_record import colcon_wasm  # noqa: E402
 from test_record import frame_pixels  # noqa: E402
 from test_record import mcap_messages  # noqa: E402
+from test_relay_units import Client  # noqa: E402
 
 
 @pytest.fixture(scope='module')
@@ -111,6 +113,26 @@ def test_errors_name_what_failed_and_leave_no_file(install, tmp_path):
     assert code == 1 and 'is not a ws://HOST:PORT URL' in err, out + err
 
 
+def _wait_for_a_chatter_message(url, page, timeout=150):
+    """Return once the page's talker is heard through the relay at ``url``.
+
+    The recording starts then, so that its duration is all talking (the
+    page's start-up on a loaded machine took most of it otherwise).
+    """
+    client = Client.connect(url)
+    client.send({'op': 'subscribe', 'id': 'wait', 'topic': '/chatter',
+                 'type': 'demo_interfaces/msg/Chatter'})
+    deadline = time.monotonic() + timeout
+    try:
+        while time.monotonic() < deadline:
+            assert not page.done(), page.result()
+            if client.until(lambda m: m.get('topic') == '/chatter', timeout=2):
+                return
+        raise AssertionError(f'no /chatter message through {url} in {timeout} s')
+    finally:
+        client.sock.close()
+
+
 def test_record_the_pages_of_serve_through_its_relay(install, tmp_path):
     from served_page import explain_page
     from served_page import ServedPage
@@ -120,11 +142,12 @@ def test_record_the_pages_of_serve_through_its_relay(install, tmp_path):
         {'until': 'colconWasm.session.bridge && colconWasm.session.bridge.state === '
                   "'connected' && colconWasm.session.bridge.relay"},
         {'wait': 'talker', 'text': "Publishing: 'Hello World: 2'"},
-        {'sleep': 9000},
+        {'sleep': 14000},
     ]
     with ServedPage(install, args=['--rosbridge', '127.0.0.1:0']) as served:
         with ThreadPoolExecutor(1) as pool:
             page = pool.submit(served.run, tab, 60000)
+            _wait_for_a_chatter_message(served.rosbridge_url, page)
             code, out, err = colcon_wasm('record', path, '--url', served.rosbridge_url,
                                          '--install-base', install, '--duration', '8')
             result = page.result(timeout=200)
