@@ -209,6 +209,34 @@ def test_action_cancel(platform):
     assert report['exits']['client']['code'] == 1
 
 
+def test_an_action_server_executes_more_goals_than_its_pthread_pool(platform):
+    # The server starts a detached std::thread per goal. The workers of ended threads
+    # come back to the pool while main() blocks on the bus (pthread_exits.mjs): three goals
+    # at once (the pool of 4 has 3 free), then three more, one after the other. In Node.js,
+    # five at once: the two beyond the pool get new workers at once (a browser starts a
+    # worker only when its parent returns to its event loop: there the thread waits).
+    at_once = 5 if platform.name == 'node' else 3
+    clients = [f'client{i}' for i in range(at_once)]
+    report = run(platform, [
+        {'spawn': 'server', 'exe': platform.exe(ACTION_SERVER, 'action_server_member_functions')},
+        *({'spawn': c, 'exe': platform.exe(ACTION_CLIENT, 'action_client_member_functions')}
+          for c in clients),
+        *({'exit': c, 'timeout': 90} for c in clients),
+        *(step for i in range(3) for step in (
+            {'spawn': f'again{i}', 'exe': platform.exe(
+                ACTION_CLIENT, 'action_client_member_functions')},
+            {'exit': f'again{i}', 'timeout': 60})),
+    ])
+    assert sum('Goal Succeeded' in t for t in lines(report, 'server')) == at_once + 3, \
+        explain(report)
+    for client in clients + [f'again{i}' for i in range(3)]:
+        assert report['exits'][client]['code'] == 0, explain(report)
+    # new workers only while more threads ran at once than the pool has: the goals one
+    # after the other reused the workers of ended threads
+    started = [t for t in lines(report, 'server', 'WARN') if 'starting another one' in t]
+    assert len(started) <= at_once - 3 and (at_once == 3 or started), explain(report)
+
+
 @pytest.mark.parametrize('timer', ['timer_lambda', 'timer_member_function'])
 def test_timers(platform, timer):
     report = run(platform, [

@@ -10,7 +10,9 @@
  */
 
 import { BusClient } from './bus_client.mjs';
+import { isNode } from './platform.mjs';
 import { FromWorker, UNCAUGHT_EXCEPTION } from './protocol.mjs';
+import { createExitRing, recycleEndedThreads } from './pthread_exits.mjs';
 import { PthreadPool } from './pthread_pool.mjs';
 import { StdinPipe } from './stdin_pipe.mjs';
 import { mountViews } from './view_fs.mjs';
@@ -71,16 +73,19 @@ export function withNamespaceFromEnvironment(args, env) {
  * the accessor records. Any other construction gets a real Worker.
  * @param {function(): void} load
  * @param {Object<string, string>} [scripts] prefetched script texts the stubs run from memory
+ * @returns {Int32Array|null} where the stubs write their ended threads (pthread_exits.mjs),
+ *   null when no stub was taken
  */
 function withPthreadStubs(load, scripts) {
   if (!pthreadPool || pthreadPool.size === 0) {
     load();
-    return;
+    return null;
   }
   const pool = pthreadPool;
+  const exitRing = createExitRing();
   let Real = globalThis.Worker;
   function WorkerOrStub(url, options) {
-    const stub = options === undefined ? pool.take(String(url), scripts) : null;
+    const stub = options === undefined ? pool.take(String(url), scripts, exitRing) : null;
     return stub || new Real(url, options);
   }
   Object.defineProperty(globalThis, 'Worker', {
@@ -91,6 +96,7 @@ function withPthreadStubs(load, scripts) {
   } finally {
     Object.defineProperty(globalThis, 'Worker', { configurable: true, enumerable: false, writable: true, value: Real });
   }
+  return pool.taken ? exitRing : null;
 }
 
 /**
@@ -392,7 +398,17 @@ export async function startProcess(msg, platform) {
     globalThis.Module = Module;
     const scripts = msg.scripts || {};
     let glueFromMemory = false;
-    withPthreadStubs(() => { glueFromMemory = platform.loadGlue(msg.url, scripts[msg.url]) === true; }, scripts);
+    const exitRing = withPthreadStubs(() => { glueFromMemory = platform.loadGlue(msg.url, scripts[msg.url]) === true; }, scripts);
+    // ended detached threads give their workers back while main() blocks on the bus
+    if (exitRing) {
+      recycleEndedThreads(globalThis.PThread, exitRing, (running) => post({
+        type: FromWorker.LOG, stream: 'stderr',
+        text: `[WARN] [${(Date.now() / 1000).toFixed(9)}] [wasm_js]: ${msg.name}: ${running + 1} threads at once, more than its pthread `
+          + `pool of ${pthreadPool.taken} workers: starting another one${isNode ? ''
+            : ', which a browser starts only when main() returns to its event loop (the thread waits until then)'}; `
+          + 'rebuild with a larger --wasm-pthread-pool-size to have them started ahead',
+      }));
+    }
     if (pthreadPool && pthreadPool.taken) loadPthreadWorkers = deferPthreadWorkerLoads(pthreadPool.readyWorkers);
     post({ type: FromWorker.STARTED, prestartedPthreadWorkers: pthreadPool ? pthreadPool.taken : 0, glueFromMemory });
   } catch (err) {

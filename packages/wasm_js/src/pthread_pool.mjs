@@ -18,8 +18,9 @@
  *   worker -> stub {colconWasmPreload: busModuleUrl, state: Int32Array(1)}
  *     the stub imports the module, then stores 1 (ready) or 2 (failed) in
  *     state[0] (and, failed and not yet taken, posts {colconWasmError})
- *   worker -> stub {colconWasmWorkerScript: url, scripts}
- *     the stub loads url (once); its onmessage takes over. `scripts`
+ *   worker -> stub {colconWasmWorkerScript: url, scripts, exitRing}
+ *     the stub loads url (once); its onmessage takes over, and its
+ *     `cleanupThread` messages go to `exitRing` (pthread_exits.mjs). `scripts`
  *     (absolute URL -> text, browsers) are the worker script and the glue,
  *     prefetched by the Runtime: the stub's importScripts() runs those from
  *     memory (a stub under Node.js reads files and ignores them)
@@ -112,9 +113,10 @@ export class PthreadPool {
    * Hand a stub (a ready one first) to Emscripten, told to load its worker script.
    * @param {string} url Emscripten's pthread worker script (URL or path)
    * @param {Object<string, string>} [scripts] prefetched script texts (see the stub protocol)
+   * @param {Int32Array} [exitRing] where its ended threads are written (pthread_exits.mjs)
    * @returns {object|null} the worker, or null when the pool is empty
    */
-  take(url, scripts) {
+  take(url, scripts, exitRing) {
     for (const s of [...this._stubs]) {
       if (Atomics.load(s.state, 0) === FAILED) this._drop(s);
     }
@@ -125,7 +127,7 @@ export class PthreadPool {
     if (Atomics.load(stub.state, 0) === READY) this.readyWorkers.add(stub.worker);
     stub.stop();
     if (stub.busy) stub.busy();
-    stub.worker.postMessage({ colconWasmWorkerScript: url, scripts: scripts || {} });
+    stub.worker.postMessage({ colconWasmWorkerScript: url, scripts: scripts || {}, exitRing });
     this.taken++;
     return stub.worker;
   }

@@ -3,7 +3,8 @@
 // A pre-started Emscripten pthread worker for browsers (a classic Web Worker,
 // see pthread_pool.mjs): booted and with the bus client imported before the
 // program starts; told Emscripten's worker script, it imports it, and that
-// script's onmessage takes over.
+// script's onmessage takes over. Its threads' ends go to the main thread
+// through shared memory (pthread_exits.mjs).
 'use strict';
 
 importScripts('import_script.js');
@@ -41,5 +42,28 @@ self.onmessage = function(e) {
       };
     }
     importScripts(d.colconWasmWorkerScript);
+    if (d.exitRing) sendCleanupsThroughRing(self, d.exitRing);
   }
 };
+
+// pthread_exits.mjs' pushExit and sendCleanupsThroughRing (a classic script
+// cannot import a module): change both.
+function pushExit(ring, thread) {
+  var slots = ring.length - 2;
+  for (;;) {
+    var written = Atomics.load(ring, 0);
+    if (written - Atomics.load(ring, 1) >= slots) return false;
+    if (Atomics.compareExchange(ring, 0, written, written + 1) === written) {
+      Atomics.store(ring, 2 + (written % slots), thread);
+      return true;
+    }
+  }
+}
+
+function sendCleanupsThroughRing(scope, ring) {
+  var post = scope.postMessage;
+  scope.postMessage = function(msg) {
+    if (msg && msg.cmd === 'cleanupThread' && msg.thread && pushExit(ring, msg.thread)) return undefined;
+    return post.apply(this, arguments);
+  };
+}
