@@ -18,6 +18,8 @@ Use from a test module::
     build.install / 'rcutils' ...
 """
 
+import contextlib
+import fcntl
 import hashlib
 import json
 import os
@@ -87,6 +89,24 @@ def cache_root():
         'COLCON_WASM_CACHE', Path.home() / '.cache' / 'colcon-wasm'))
 
 
+@contextlib.contextmanager
+def cache_lock(name):
+    """
+    Hold the cache's lock of one entry (a file beside it) for the block.
+
+    Two test runs on one machine (CI's and a developer's, or two pytest
+    sessions) that need the same build wait for each other rather than
+    remove or overwrite each other's workspace.
+    """
+    cache_root().mkdir(parents=True, exist_ok=True)
+    with open(cache_root() / f'{name}.lock', 'w') as handle:
+        fcntl.flock(handle, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(handle, fcntl.LOCK_UN)
+
+
 def unpacked_source(snapshot=None, name='humble-src'):
     """Get an unpacked copy of a snapshot's src/ (shared by all builds)."""
     snapshot = humble_snapshot() if snapshot is None else snapshot
@@ -95,6 +115,13 @@ def unpacked_source(snapshot=None, name='humble-src'):
         return snapshot / 'src'  # missing: callers skip
     stamp = _file_digest(archive)[:16]
     target = cache_root() / f'{name}-{stamp}'
+    with cache_lock(f'{name}-{stamp}'):
+        _unpack(archive, target)
+    return target / 'src'
+
+
+def _unpack(archive, target):
+    """Unpack a snapshot archive into target (whole or not at all), unless it is there."""
     if not (target / '.complete').is_file():
         staging = Path(str(target) + '.tmp')
         shutil.rmtree(staging, ignore_errors=True)
@@ -104,7 +131,6 @@ def unpacked_source(snapshot=None, name='humble-src'):
         (staging / '.complete').write_text('')
         shutil.rmtree(target, ignore_errors=True)
         staging.rename(target)
-    return target / 'src'
 
 
 def _file_digest(path):
@@ -207,7 +233,7 @@ def prune_stale_builds(max_age_hours=24):
         return
     limit = time.time() - max_age_hours * 3600
     for folder in root.glob('humble-*'):
-        if folder.name.startswith(('humble-src-', 'humble-corpus-src-')):
+        if not folder.is_dir() or folder.name.startswith(('humble-src-', 'humble-corpus-src-')):
             continue  # the unpacked snapshots, shared by every build
         marker = folder / 'result.json'
         used = (marker if marker.is_file() else folder).stat().st_mtime
@@ -261,6 +287,12 @@ def humble_build(up_to=BELOW_RMW_UP_TO, skip=BELOW_RMW_SKIP,
         pytest.skip(f'Humble corpus snapshot not found at {corpus_snapshot()} '
                     '(set COLCON_WASM_CORPUS)')
     key = inputs_hash(up_to, skip, extra, colcon_args, corpus, underlay, snapshot)
+    with cache_lock(f'humble-{key}'):
+        return _build(key, up_to, skip, extra, colcon_args, corpus, underlay, snapshot)
+
+
+def _build(key, up_to, skip, extra, colcon_args, corpus, underlay, snapshot):
+    """Build into the cache entry of `key`, or reuse it (the caller holds its lock)."""
     workspace = cache_root() / f'humble-{key}'
     if key in _FAILED:
         # every test module asks; one failed build is reported, not redone
