@@ -148,6 +148,16 @@ def test_use_sim_time_follows_clock(install):
     assert code == 0, out[-3000:]
 
 
+def test_clock_sleeps_and_rates_follow_clock(install):
+    """Clock.sleep_for and a node's Rate on use_sim_time count /clock from another node."""
+    code, out = colcon_wasm('launch', '--install-base', install, '--duration', 60,
+                            '--python', DATA / 'clock_publisher.py',
+                            '--python', DATA / 'sim_sleep.py', timeout=240)
+    slept = re.search(r'\[sleeper\]: slept on /clock: (\d+) s', out)
+    assert slept and int(slept.group(1)) >= 60, out[-6000:]
+    assert re.search(r'\[sim_sleep-\d\]: process has finished cleanly', out), out[-6000:]
+
+
 def test_an_import_of_a_native_only_module_names_its_package(install, tmp_path):
     script = tmp_path / 'uses_tf2.py'
     script.write_text('import rclpy\nrclpy.init()\nimport numpy  # noqa\n')

@@ -168,6 +168,26 @@ def test_a_python_action_client_drives_the_cpp_server_feedback_result_and_cancel
     assert '[INFO] [client_cancel-2]: process has finished cleanly' in out, out[-6000:]
 
 
+def test_the_asyncio_action_client_runs_goals_in_parallel_and_in_sequence(overlay):
+    # client_asyncio.py: spin_once in an asyncio task, two goals awaited in parallel, then two
+    # one after the other, all in loop.run_until_complete (Pyodide's WebLoop cannot block:
+    # rclpy/_event_loop.py)
+    code, out = launch(overlay, 'examples_rclcpp_minimal_action_server/'
+                       'action_server_member_functions',
+                       'examples_rclpy_minimal_action_client/client_asyncio', duration=75)
+    sequence = r"array\('i', \[0, 1, 1, 2, 3, 5, 8, 13, 21, 34, 55\]\)"
+    client = 'client_asyncio-2'
+    assert len(log(out, client, 'minimal_action_client_asyncio',
+                   f'Goal succeeded! Result: {sequence}')) == 4, out[-6000:]
+    assert log(out, client, 'minimal_action_client', 'unfinished: 0'), out[-6000:]
+    assert len(log(out, client, 'minimal_action_client',
+                   f'result {sequence} and status flag 4')) == 2, out[-6000:]
+    for step in 'AB':
+        assert log(out, client, 'minimal_action_client',
+                   rf'{step}\) result {sequence} and status flag 4'), out[-6000:]
+    assert f'[INFO] [{client}]: process has finished cleanly' in out, out[-6000:]
+
+
 def test_python_action_server_and_client_talk_to_each_other(overlay):
     code, out = launch(overlay, 'examples_rclpy_minimal_action_server/server',
                        'examples_rclpy_minimal_action_client/client_cancel', duration=25)
@@ -197,3 +217,43 @@ def test_guard_condition_and_executor_examples(overlay):
     # each process' listener hears both talkers (same topic)
     assert log(out, 'composed-1', 'listener', f'I heard: "Hello World: {published[-2]}"')
     assert log(out, 'callback_group-2', 'listener', 'I heard: "Hello World: 2"'), out[-6000:]
+
+
+"""Three nodes: the custom executor example, the custom callback group one, and a C++
+talker on the custom executor's 'estop' topic (its high-priority node)."""
+CUSTOM_LAUNCH = """<launch>
+  <node pkg="examples_rclpy_executors" exec="custom_executor"/>
+  <node pkg="examples_rclpy_executors" exec="custom_callback_group"/>
+  <node pkg="examples_rclcpp_minimal_publisher" exec="publisher_member_function">
+    <remap from="topic" to="estop"/>
+  </node>
+</launch>
+"""
+
+
+def test_custom_executor_and_custom_callback_group_examples(overlay, tmp_path):
+    # custom_executor: an Executor subclass whose spin_once takes wait_for_ready_callbacks'
+    # handlers and submits them to concurrent.futures thread pools (run inline: Pyodide
+    # starts no thread); custom_callback_group: a token-bucket CallbackGroup subclass
+    path = tmp_path / 'custom.launch.xml'
+    path.write_text(CUSTOM_LAUNCH)
+    code, out = launch(overlay, str(path), duration=30)
+    # the high-priority node (estopper) hears the C++ talker
+    estop = log(out, 'custom_executor-1', 'estopper', r'I heard: "Hello, world! (\d+)"')
+    assert len(estop) >= 3, out[-6000:]
+    # the low-priority ones: the listener hears the talker of its own process
+    assert log(out, 'custom_executor-1', 'listener', 'I heard: "Hello World: 3"'), out[-6000:]
+    # the throttled talker's 10 Hz timer runs while its bucket of 10 tokens lasts,
+    # then at the 2 Hz of the refill
+    stamps = [float(s) for s in re.findall(
+        r'\[custom_callback_group-2\] \[INFO\] \[([\d.]+)\] \[intermittent_talker\]: '
+        r'Publishing: "Hello World: \d+"', out)]
+    published = log(out, 'custom_callback_group-2', 'intermittent_talker',
+                    r'Publishing: "Hello World: (\d+)"')
+    assert published == [str(i) for i in range(len(published))], out[-6000:]
+    assert len(published) >= 14, out[-6000:]
+    # no more than the bucket and one token per refill since the first
+    for i, stamp in enumerate(stamps):
+        assert i + 1 <= 10 + (stamp - stamps[0]) / 0.5 + 1, (i, stamps)
+    # the last ones: spaced by the refill, not by the 0.1 s timer
+    assert stamps[-1] - stamps[-5] >= 4 * 0.5 * 0.8, stamps

@@ -41,6 +41,18 @@ except ParameterNotDeclaredException:
     pass
 else:
     raise SystemExit('an undeclared parameter must raise')
+# Node options: constructor overrides win over -p and are declared with
+# automatically_declare_parameters_from_overrides; undeclared ones may be set
+# with allow_undeclared_parameters
+loose = Node('py_loose', parameter_overrides=[Parameter('rate', value=9.5),
+                                              Parameter('mode', value='fast')],
+             automatically_declare_parameters_from_overrides=True,
+             allow_undeclared_parameters=True)
+assert loose.get_parameter('rate').value == 9.5 and loose.get_parameter('mode').value == 'fast'
+assert loose.get_parameter('unset').type_ == Parameter.Type.NOT_SET
+assert loose.set_parameters([Parameter('speed', value=3)])[0].successful
+assert loose.has_parameter('speed') and loose.get_parameter('speed').value == 3
+loose.destroy_node()
 chatter = Chatter(data='hi', count=3)
 assert chatter == Chatter(data='hi', count=3)
 assert chatter != Chatter(data='hi', count=4)

@@ -10,8 +10,10 @@ runtime's cdr.mjs. What works and what does not yet: docs/python.md of
 colcon-wasm.
 """
 
+from rclpy import _event_loop
 from rclpy import _messages
 from rclpy import _native_only
+from rclpy import _threads
 from rclpy._bus import bus as _bus
 from rclpy.context import default_context
 from rclpy.executors import SingleThreadedExecutor
@@ -22,6 +24,8 @@ __all__ = ['init', 'shutdown', 'try_shutdown', 'ok', 'spin', 'spin_once',
 _messages.load_descriptions(_bus.types_json())
 _messages.install_finder()
 _native_only.install_finder()
+_threads.install_inline_pool()
+_event_loop.install_bus_event_loop()
 
 _executor = None
 

@@ -44,6 +44,45 @@ class Clock:
             ns = _time.time_ns()
         return Time(nanoseconds=ns, clock_type=self._clock_type)
 
+    def sleep_until(self, until, context=None):
+        """
+        Sleep until ``until`` (a Time of this clock's type); True when it was reached.
+
+        False when it woke for another reason, as rclpy's: the context
+        (default: the default one) was shut down, or simulated time was
+        switched on or off (the epoch changed). A ROS clock on simulated
+        time sleeps until ``/clock`` reaches ``until``. The sleep is
+        time.sleep's (rclpy.executors): in a MultiThreadedExecutor's
+        callback, the other callbacks run meanwhile.
+        """
+        from rclpy.context import default_context
+        from rclpy.exceptions import NotInitializedException
+        context = context or default_context()
+        if not context.ok():
+            raise NotInitializedException()
+        if until.clock_type != self._clock_type:
+            raise ValueError("until's clock type does not match this clock's type")
+        simulated = self._simulated()
+        while True:
+            if not context.ok() or self._simulated() != simulated:
+                return False
+            left = (until - self.now()).nanoseconds / 1e9
+            if left <= 0:
+                return True
+            self._wait(left)
+
+    def sleep_for(self, rel_time, context=None):
+        """Sleep for ``rel_time`` (a Duration): ``sleep_until(now() + rel_time, context)``."""
+        return self.sleep_until(self.now() + rel_time, context)
+
+    def _simulated(self):
+        """Return True while the clock counts simulated time (a ROS clock on /clock)."""
+        return False
+
+    def _wait(self, seconds):
+        """Wait for time to pass: at most ``seconds``, a quarter second at a time."""
+        _time.sleep(min(seconds, 0.25))
+
 
 class ROSClock(Clock):
     """
@@ -65,6 +104,17 @@ class ROSClock(Clock):
     def ros_time_is_active(self):
         """Return whether simulated time (``/clock``) is in use."""
         return self._ros_time_is_active
+
+    def _simulated(self):
+        return self._ros_time_is_active
+
+    def _wait(self, seconds):
+        """Wait for time to pass; on simulated time, for /clock (its time source)."""
+        waiter = getattr(self, '_clock_waiter', None)
+        if self._ros_time_is_active and waiter is not None:
+            waiter()
+        else:
+            super()._wait(seconds)
 
     def _set_ros_time_is_active(self, active):
         self._ros_time_is_active = bool(active)

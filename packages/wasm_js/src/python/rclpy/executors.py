@@ -41,6 +41,10 @@ class ShutdownException(Exception):
     """The executor was shut down."""
 
 
+class TimeoutException(Exception):
+    """Nothing was ready in the time given (wait_for_ready_callbacks)."""
+
+
 def create_task(callback, *args, **kwargs):
     """Schedule ``callback(*args, **kwargs)`` (or a coroutine) as a Task; returns it."""
     task = Task(callback, args, kwargs)
@@ -54,18 +58,29 @@ def _wait(timeout_sec):
              -1 if timeout_sec is None else max(0.0, timeout_sec) * 1000.0)
 
 
+def wait_for(subscription, timeout_sec):
+    """Block until ``subscription`` has a message, for at most ``timeout_sec``."""
+    bus.wait(handles_to_js([subscription._handle]), handles_to_js(['subscription']),
+             max(0.0, timeout_sec) * 1000.0, handles_to_js([0]))
+
+
+def sleep_spins():
+    """Return True when time.sleep here spins a MultiThreadedExecutor (see above)."""
+    executor = _DISPATCHING[-1] if _DISPATCHING else None
+    return isinstance(executor, MultiThreadedExecutor) and executor.context.ok()
+
+
 def sleep(seconds):
     """Do what time.sleep does (this module installs it as time.sleep; see above)."""
     if seconds < 0:
         raise ValueError('sleep length must be non-negative')
     end = time.monotonic() + seconds
-    executor = _DISPATCHING[-1] if _DISPATCHING else None
     while True:
         left = end - time.monotonic()
         if left <= 0:
             return
-        if isinstance(executor, MultiThreadedExecutor) and executor.context.ok():
-            executor.spin_once(timeout_sec=left)
+        if sleep_spins():
+            _DISPATCHING[-1].spin_once(timeout_sec=left)
         else:
             _wait(left)
 
@@ -80,6 +95,7 @@ class Executor:
         """Create an executor of ``context`` (default: the default context)."""
         self.context = context or default_context()
         self._nodes = []
+        self._ready = None
 
     def add_node(self, node):
         """Add a node; returns True when it was not there yet."""
@@ -134,63 +150,103 @@ class Executor:
 
     def spin_once(self, timeout_sec=None):
         """Wait for work (at most ``timeout_sec``; None: until there is some) and do it."""
+        for call, _, _ in self._ready_callbacks(timeout_sec):
+            call()
+        self._resume_tasks()
+
+    def wait_for_ready_callbacks(self, timeout_sec=None):
+        """Return (handler, entity, node) of the next ready callback, as rclpy's does.
+
+        ``handler`` is a Task that runs the callback when called (custom
+        executors call it, or give it to a pool). One wait yields every
+        callback that is ready then; the next call returns the next of
+        them, and waits again when none is left. TimeoutException when
+        nothing was ready in ``timeout_sec``, ShutdownException when the
+        context was shut down.
+        """
+        end = None if timeout_sec is None or timeout_sec < 0 else time.monotonic() + timeout_sec
+        while True:
+            if not self.context.ok():
+                raise ShutdownException()
+            if self._ready is None:
+                left = None if end is None else max(0.0, end - time.monotonic())
+                self._ready = self._ready_callbacks(left)
+            try:
+                call, entity, node = next(self._ready)
+            except StopIteration:
+                self._ready = None
+                if end is not None and time.monotonic() >= end:
+                    raise TimeoutException()
+                continue
+            return Task(call), entity, node
+
+    def _ready_callbacks(self, timeout_sec):
+        """Wait once, then yield (call, entity, node) for each callback ready then.
+
+        Lazily: each is taken (a message, a request) when the one before
+        it was run, and only while its callback group lets it start.
+        """
         self._resume_tasks()
         may_run = self._may_run
         nodes = [n for n in self._nodes if n._handle is not None]
-        subscriptions = [s for n in nodes for s in n.subscriptions
+        subscriptions = [(s, n) for n in nodes for s in n.subscriptions
                          if s._handle is not None and may_run(s)]
-        services = [s for n in nodes for s in n.services if s._handle is not None and may_run(s)]
-        clients = [c for n in nodes for c in n.clients if c._handle is not None and may_run(c)]
-        timers = [t for n in nodes for t in n.timers if not t.is_canceled() and may_run(t)]
-        guards = [g for n in nodes for g in n.guards if g._triggered and may_run(g)]
-        events = [h for n in nodes for e in n.publishers + n.subscriptions
+        services = [(s, n) for n in nodes for s in n.services
+                    if s._handle is not None and may_run(s)]
+        clients = [(c, n) for n in nodes for c in n.clients
+                   if c._handle is not None and may_run(c)]
+        timers = [(t, n) for n in nodes for t in n.timers if not t.is_canceled() and may_run(t)]
+        guards = [(g, n) for n in nodes for g in n.guards if g._triggered and may_run(g)]
+        events = [(h, n) for n in nodes for e in n.publishers + n.subscriptions
                   if e._handle is not None for h in getattr(e, 'event_handlers', ())
                   if may_run(h)]
         wait = -1.0 if timeout_sec is None or timeout_sec < 0 else timeout_sec
         if guards:
             wait = 0.0
-        lefts = [left for left in (t._seconds_left() for t in timers) if left is not None]
+        lefts = [left for left in (t._seconds_left() for t, _ in timers) if left is not None]
         if lefts:
             wait = min(lefts) if wait < 0 else min(wait, min(lefts))
         timeout_ms = -1 if wait < 0 else wait * 1000.0
-        entities = subscriptions + services + clients + events
+        entities = [e for e, _ in subscriptions + services + clients + events]
         kinds = (['subscription'] * len(subscriptions) + ['service'] * len(services)
                  + ['client'] * len(clients) + ['event'] * len(events))
-        event_types = [0] * (len(entities) - len(events)) + [h.event_type for h in events]
+        event_types = [0] * (len(entities) - len(events)) + [h.event_type for h, _ in events]
         ready = list(bus.wait(handles_to_js(e._handle for e in entities), handles_to_js(kinds),
                               timeout_ms, handles_to_js(event_types)))
-        for guard in guards:
+        for guard, node in guards:
             guard._triggered = False
-            self._call(guard, guard.callback)
-        for subscription, flag in zip(subscriptions, ready):
+            yield lambda g=guard: self._call(g, g.callback), guard, node
+        for (subscription, node), flag in zip(subscriptions, ready):
             while flag and subscription._handle is not None and may_run(subscription):
                 msg = subscription._take()
                 if msg is None:
                     break
-                self._call(subscription, subscription.callback, msg)
+                yield (lambda s=subscription, m=msg: self._call(s, s.callback, m),
+                       subscription, node)
         offset = len(subscriptions)
-        for service, flag in zip(services, ready[offset:offset + len(services)]):
+        for (service, node), flag in zip(services, ready[offset:offset + len(services)]):
             while flag and service._handle is not None and may_run(service):
                 taken = service._take_request()
                 if taken is None:
                     break
-                request, request_id = taken
-                self._call(service, service.callback, request, service.srv_type.Response(),
-                           done=lambda response, s=service, i=request_id: s._respond(i, response))
+                yield (lambda s=service, t=taken: self._call(
+                    s, s.callback, t[0], s.srv_type.Response(),
+                    done=lambda response: s._respond(t[1], response)), service, node)
         offset += len(services)
-        for client, flag in zip(clients, ready[offset:offset + len(clients)]):
+        for (client, _), flag in zip(clients, ready[offset:offset + len(clients)]):
+            # a response completes its future here; the futures' callbacks run as tasks
             while flag and client._handle is not None and client._take_one():
                 pass
         offset += len(clients)
-        for handler, flag in zip(events, ready[offset:]):
+        for (handler, node), flag in zip(events, ready[offset:]):
             status = handler._take() if flag and handler._handle is not None else None
             if status is not None:
-                self._call(handler, handler.callback, status)
-        for timer in timers:
+                yield (lambda h=handler, st=status: self._call(h, h.callback, st),
+                       handler, node)
+        for timer, node in timers:
             if timer._due() and may_run(timer):
                 timer._advance()
-                self._call(timer, timer.callback)
-        self._resume_tasks()
+                yield lambda t=timer: self._call(t, t.callback), timer, node
 
     def _may_run(self, entity):
         group = getattr(entity, 'callback_group', None)

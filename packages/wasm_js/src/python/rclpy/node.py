@@ -14,6 +14,10 @@ from rclpy._graph import NodeNameNonExistentError  # noqa: F401 (rclpy's name fo
 from rclpy.callback_groups import MutuallyExclusiveCallbackGroup
 from rclpy.clock import ROSClock
 from rclpy.context import default_context
+from rclpy.exceptions import InvalidParameterValueException
+from rclpy.exceptions import ParameterAlreadyDeclaredException
+from rclpy.exceptions import ParameterNotDeclaredException
+from rclpy.exceptions import ROSInterruptException
 from rclpy.logging import RcutilsLogger
 from rclpy.parameter import Parameter
 from rclpy.parameter import SetParametersResult
@@ -275,31 +279,55 @@ class Timer:
 
 class Rate:
     """
-    Sleeps until the next period of a frequency (steady clock).
+    Sleeps until the next period of a frequency, on a clock (the node's ROS clock).
 
-    ``sleep()`` uses time.sleep (rclpy.executors): inside a callback of a
-    MultiThreadedExecutor the other ready callbacks run meanwhile; elsewhere
-    it blocks, as rclpy's blocks its thread.
+    Off simulated time the periods are counted on the steady clock; while the
+    clock follows ``/clock`` (``use_sim_time``), on its time, and ``sleep()``
+    waits for ``/clock`` to reach the period's end (Clock.sleep_until). A
+    switch between the two starts a period anew. ``sleep()`` uses time.sleep
+    (rclpy.executors): inside a callback of a MultiThreadedExecutor the other
+    ready callbacks run meanwhile; elsewhere it blocks, as rclpy's blocks its
+    thread. After rclpy's shutdown it raises ROSInterruptException, as rclpy's.
     """
 
-    def __init__(self, frequency):
+    def __init__(self, frequency, clock=None, context=None):
         """Made by Node.create_rate; the first period starts now."""
         if frequency <= 0:
             raise ValueError(f'frequency must be > 0, got {frequency}')
-        self._period = 1.0 / frequency
-        self._next = time.monotonic() + self._period
+        self._period_ns = int(1e9 / frequency)
+        self._clock = clock
+        self._context = context or default_context()
+        self._simulated, now = self._now_ns()
+        self._next = now + self._period_ns
         self._destroyed = False
+
+    def _now_ns(self):
+        """Return (simulated?, nanoseconds now on the rate's base)."""
+        if self._clock is not None and getattr(self._clock, 'ros_time_is_active', False):
+            return True, self._clock.now().nanoseconds
+        return False, time.monotonic_ns()
 
     def sleep(self):
         """Sleep until the end of the current period; a late call starts a new period now."""
         if self._destroyed:
-            raise RuntimeError('Rate is destroyed')
-        left = self._next - time.monotonic()
-        if left > 0:
-            time.sleep(left)
-            self._next += self._period
+            raise RuntimeError('Rate cannot sleep because it has been destroyed')
+        if not self._context.ok():
+            raise ROSInterruptException()
+        simulated, now = self._now_ns()
+        if simulated != self._simulated:
+            self._simulated, self._next = simulated, now + self._period_ns
+        if self._next <= now:
+            self._next = now + self._period_ns
+            return
+        if simulated:
+            from rclpy.time import Time
+            until = Time(nanoseconds=self._next, clock_type=self._clock.clock_type)
+            self._clock.sleep_until(until, self._context)
         else:
-            self._next = time.monotonic() + self._period
+            time.sleep((self._next - now) / 1e9)
+        self._next += self._period_ns
+        if not self._context.ok():
+            raise ROSInterruptException()
 
     def destroy(self):
         """Refuse further sleeps."""
@@ -339,8 +367,16 @@ class Node:
     """A ROS node of this process on the bus."""
 
     def __init__(self, node_name, *, context=None, namespace=None, cli_args=None,
-                 **kwargs):
-        """Create the node (it joins the graph now); ``-r __node:=`` and ``__ns:=`` apply."""
+                 parameter_overrides=None, allow_undeclared_parameters=False,
+                 automatically_declare_parameters_from_overrides=False, **kwargs):
+        """Create the node (it joins the graph now); ``-r __node:=`` and ``__ns:=`` apply.
+
+        ``parameter_overrides`` (Parameters) win over the command line's
+        ``-p``, as in rclpy; ``automatically_declare_parameters_from_overrides``
+        declares every override now; with ``allow_undeclared_parameters``,
+        setting an undeclared parameter declares it and getting one returns
+        a NOT_SET Parameter.
+        """
         self.context = context or default_context()
         self.context._check_ok('create a node')
         remaps = self.context.remappings(cli_args)
@@ -370,6 +406,11 @@ class Node:
         self._parameters = {}
         self._parameter_callbacks = []
         self._overrides = self.context.parameter_overrides(node_name, cli_args)
+        self._overrides.update((p.name, p.value) for p in parameter_overrides or ())
+        self._allow_undeclared = allow_undeclared_parameters
+        self._parameters.update((name, Parameter(name, value=value))
+                                for name, value in self._overrides.items()
+                                if automatically_declare_parameters_from_overrides)
         self.context._nodes.append(self)
         self._parameter_service = None
         if kwargs.get('start_parameter_services', True) and parameter_service.available():
@@ -450,8 +491,11 @@ class Node:
         return timer
 
     def create_rate(self, frequency, clock=None):
-        """Create a Rate: ``sleep()`` waits until the next period of ``frequency`` Hz."""
-        return Rate(frequency)
+        """Create a Rate: ``sleep()`` waits until the next period of ``frequency`` Hz.
+
+        ``clock``: the clock it counts (default: the node's ROS clock).
+        """
+        return Rate(frequency, clock or self._clock, self.context)
 
     def create_guard_condition(self, callback, callback_group=None):
         """Create a guard condition: ``trigger()`` makes the next spin call ``callback()``."""
@@ -533,9 +577,11 @@ class Node:
 
     def get_parameter(self, name):
         """Return a declared parameter."""
-        if name not in self._parameters:
-            raise ParameterNotDeclaredException(name)
-        return self._parameters[name]
+        if name in self._parameters:
+            return self._parameters[name]
+        if self._allow_undeclared:
+            return Parameter(name)
+        raise ParameterNotDeclaredException(name)
 
     def get_parameter_or(self, name, alternative_value=None):
         """Return a declared parameter, else ``alternative_value``."""
@@ -551,13 +597,15 @@ class Node:
         """Set declared parameters one by one; returns a SetParametersResult each."""
         results = []
         for parameter in parameters:
-            if parameter.name not in self._parameters:
+            new = parameter.name not in self._parameters
+            if new and not self._allow_undeclared:
                 raise ParameterNotDeclaredException(parameter.name)
             result = self._run_parameter_callbacks([parameter])
             if result.successful:
                 self._parameters[parameter.name] = parameter
                 if self._parameter_service is not None:
-                    self._parameter_service.publish_event(changed=[parameter])
+                    self._parameter_service.publish_event(
+                        **{'new' if new else 'changed': [parameter]})
             results.append(result)
         return results
 
@@ -688,28 +736,3 @@ class Node:
         if self in self.context._nodes:
             self.context._nodes.remove(self)
         return True
-
-
-class ParameterNotDeclaredException(Exception):
-    """A parameter that was not declared."""
-
-    def __init__(self, name):
-        """Name the parameter."""
-        super().__init__('Invalid access to undeclared parameter(s)', name)
-
-
-class ParameterAlreadyDeclaredException(Exception):
-    """A parameter declared twice."""
-
-    def __init__(self, name):
-        """Name the parameter."""
-        super().__init__('Parameter(s) already declared', name)
-
-
-class InvalidParameterValueException(Exception):
-    """A parameter value that a callback refused."""
-
-    def __init__(self, name, value, reason):
-        """Name the parameter, the value and the reason."""
-        super().__init__(f'Invalid parameter value ({value}) for parameter. Reason: '
-                         f'{reason}', name)

@@ -152,7 +152,7 @@ class ParameterService:
         parameters = [from_value_msg(p.name, p.value) for p in request.parameters]
         result = _messages.message_class('rcl_interfaces/msg/SetParametersResult')
         undeclared = [p.name for p in parameters if p.name not in self.node._parameters]
-        if undeclared:
+        if undeclared and not self.node._allow_undeclared:
             response.result = result(successful=False,
                                      reason=f'parameter not declared: {undeclared[0]}')
             return response
@@ -160,6 +160,7 @@ class ParameterService:
         if verdict.successful:
             for p in parameters:
                 self.node._parameters[p.name] = p
-            self.publish_event(changed=parameters)
+            self.publish_event(new=[p for p in parameters if p.name in undeclared],
+                               changed=[p for p in parameters if p.name not in undeclared])
         response.result = result(successful=verdict.successful, reason=verdict.reason)
         return response

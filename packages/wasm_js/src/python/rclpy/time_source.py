@@ -8,8 +8,12 @@ Every node declares ``use_sim_time`` (false unless overridden, ``-p
 use_sim_time:=true``). While it is true, the node subscribes to ``/clock``
 (rosgraph_msgs/msg/Clock, depth 1, best effort, as rclpy) and its ROS
 clock reads the last time received; setting it false goes back to the
-system time. The messages arrive while the node spins, like any others.
+system time. The messages arrive while the node spins, like any others;
+a sleep on the clock (``Clock.sleep_until``, ``Rate.sleep``) outside of a
+spin takes them itself, as rclpy's executor thread would.
 """
+
+import time
 
 from rclpy.clock import ROSClock
 from rclpy.parameter import SetParametersResult
@@ -30,6 +34,7 @@ class TimeSource:
         self._clock = node.get_clock()
         if not isinstance(self._clock, ROSClock):
             raise TypeError('the time source drives a ROSClock')
+        self._clock._clock_waiter = self._wait_for_clock
         node.add_on_set_parameters_callback(self._on_parameters)
         # the callback refuses an override that is no boolean (declare_parameter raises)
         self._follow(node.declare_parameter(USE_SIM_TIME, False).value)
@@ -57,3 +62,17 @@ class TimeSource:
 
     def _on_clock(self, msg):
         self._clock._set_ros_time(msg.clock.sec * 10 ** 9 + msg.clock.nanosec)
+
+    def _wait_for_clock(self):
+        """Wait (at most 0.1 s) for ``/clock`` messages and apply them."""
+        from rclpy import executors
+        subscription = self._subscription
+        if executors.sleep_spins() or subscription is None or subscription._handle is None:
+            # a MultiThreadedExecutor's callback: its spin takes /clock with the rest
+            time.sleep(0.05)
+            return
+        executors.wait_for(subscription, 0.1)
+        msg = subscription._take()
+        while msg is not None:
+            self._on_clock(msg)
+            msg = subscription._take()
