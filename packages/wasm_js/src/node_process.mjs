@@ -82,6 +82,11 @@ export class NodeProcess {
      */
     this.glueFromMemory = false;
     /**
+     * A Python node, once started: true when its Pyodide was restored from
+     * the host's snapshot (python/pyodide_snapshot.mjs), false when started anew.
+     */
+    this.pyodideSnapshot = false;
+    /**
      * Known once the program has exited by itself: true when its main
      * thread copied messages between its heap and the bus with
      * memory.copy (the bus is a WebAssembly.Memory, see copier.mjs), false
@@ -122,6 +127,7 @@ export class NodeProcess {
       this.startedAt = performance.now();
       this.prestartedPthreadWorkers = m.prestartedPthreadWorkers || 0;
       this.glueFromMemory = !!m.glueFromMemory;
+      this.pyodideSnapshot = !!m.pyodideSnapshot;
     } else if (m.type === FromWorker.SETTLED) {
       if (this.settledAt === null && !this._done) this.settledAt = performance.now();
       this._resolveSettled();

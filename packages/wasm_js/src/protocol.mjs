@@ -30,8 +30,9 @@ export const FromWorker = Object.freeze({
   /** {type, stream: 'stdout'|'stderr', text} one line */
   LOG: 'log',
   /**
-   * {type, prestartedPthreadWorkers, glueFromMemory} the glue is loaded (from its prefetched
-   * text, or by URL) and main() is about to run
+   * {type, prestartedPthreadWorkers, glueFromMemory, pyodideSnapshot} the glue is loaded
+   * (from its prefetched text, or by URL) and main() is about to run; a Python worker: Pyodide
+   * is loaded (from the host's snapshot, or anew) and the script is about to run
    */
   STARTED: 'started',
   /**

@@ -312,8 +312,8 @@ async function start(msg) {
   if (!registry.has('std_msgs/msg/String')) registry.add(STD_MSGS_STRING);
   if (!registry.has('builtin_interfaces/msg/Time')) registry.add(BUILTIN_INTERFACES);
   if (!registry.has('rosgraph_msgs/msg/Clock')) registry.add(ROSGRAPH_CLOCK);
-  const { loadPyodide, indexURL } = await importPyodide(msg);
-  const pyodide = await loadPyodide({ indexURL, env: { HOME: '/home/pyodide', ...msg.env } });
+  for (const note of msg.notes || []) log('stderr', `[WARN] [${stamp()}] [wasm_js]: ${msg.name}: ${note}`);
+  const { pyodide, fromSnapshot } = await startPyodide(msg);
   pyodide.setStdout({ batched: (line) => log('stdout', line) });
   pyodide.setStderr({ batched: (line) => log('stderr', line) });
   if (msg.stdin) {
@@ -344,7 +344,7 @@ async function start(msg) {
   pyodide.runPython(`import sys\nsys.path[0:0] = ${JSON.stringify([PYTHON_ROOT, ...(msg.pythonPath || [])])}`);
   pyodide.runPython(RUNNER, { filename: '<colcon-wasm python worker>' });
   const run = pyodide.globals.get('_colcon_wasm_run');
-  post({ type: FromWorker.STARTED, prestartedPthreadWorkers: 0, glueFromMemory: false });
+  post({ type: FromWorker.STARTED, prestartedPthreadWorkers: 0, glueFromMemory: false, pyodideSnapshot: fromSnapshot });
   const result = run(msg.file, msg.source, pyodide.toPy(msg.args), pyodide.toPy(msg.env));
   const [code, reason] = result.toJs();
   result.destroy();
@@ -352,8 +352,54 @@ async function start(msg) {
   post({ type: FromWorker.EXIT, code, crashed: code !== 0, reason, memoryCopy: false });
 }
 
+/** rcutils' stamp of a log line: seconds.nanoseconds of the wall clock. */
+function stamp() {
+  return (Date.now() / 1000).toFixed(9);
+}
+
+/**
+ * Load Pyodide: from the host's snapshot when it gives one (pyodide_snapshot.mjs), else
+ * anew; a snapshot that does not load costs a warning and a fresh start.
+ */
+async function startPyodide(msg) {
+  const { loadPyodide, indexURL } = await importPyodide(msg);
+  const env = { HOME: '/home/pyodide', ...msg.env };
+  if (msg.snapshot) {
+    try {
+      return { pyodide: await loadPyodide({ indexURL, env, _loadSnapshot: new Uint8Array(msg.snapshot) }), fromSnapshot: true };
+    } catch (e) {
+      log('stderr', `[WARN] [${stamp()}] [wasm_js]: ${msg.name}: the Pyodide snapshot does not load `
+        + `(${e && e.message ? e.message : e}): starting Pyodide anew; the next node makes a new snapshot`);
+    }
+  }
+  return { pyodide: await loadPyodide({ indexURL, env }), fromSnapshot: false };
+}
+
+/**
+ * A snapshot worker (pyodide_snapshot.mjs): load Pyodide for a snapshot, run the
+ * prelude, send the snapshot back in a SharedArrayBuffer.
+ */
+async function snapshot(msg) {
+  try {
+    const { loadPyodide, indexURL } = await importPyodide(msg);
+    const pyodide = await loadPyodide({ indexURL, env: { HOME: '/home/pyodide' }, _makeSnapshot: true });
+    pyodide.runPython(msg.prelude, { filename: '<colcon-wasm snapshot prelude>' });
+    const bytes = pyodide.makeMemorySnapshot();
+    const shared = new SharedArrayBuffer(bytes.length);
+    new Uint8Array(shared).set(bytes);
+    post({ type: 'snapshot', snapshot: shared });
+  } catch (e) {
+    post({ type: 'snapshot-failed', reason: e && e.message ? e.message : String(e) });
+  }
+}
+
 let started = false;
 const onStart = (msg) => {
+  if (!started && msg && msg.type === 'snapshot') {
+    started = true;
+    snapshot(msg);
+    return;
+  }
   if (started || !msg || msg.type !== 'start') return;
   started = true;
   start(msg).catch((e) => {

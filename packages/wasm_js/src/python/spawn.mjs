@@ -22,10 +22,12 @@
  */
 
 import { BusError, Code } from '../bus.mjs';
+import { FromWorker } from '../protocol.mjs';
 import { PROC_KIND_NODE } from '../layout.mjs';
 import { ProgramWorker, isNode, siblingUrl } from '../platform.mjs';
 import { makeStdinPipe } from '../node_process.mjs';
 import { NodeProcess } from '../runtime.mjs';
+import { dropPyodideSnapshot, pyodideSnapshot } from './pyodide_snapshot.mjs';
 
 /** The Pyodide release (npm package `pyodide`) this runtime is written and tested for. */
 export const PYODIDE_VERSION = '314.0.8';
@@ -84,6 +86,8 @@ export async function checkPyodide(dir) {
  * @param {Array<object|string>} [spec.types] types.json documents, or (Node.js) their paths
  * @param {string|Uint8Array|boolean} [spec.stdin] standard input, as Runtime.spawn's
  *   (`true`: an open one, written with NodeProcess.writeStdin; the page's console)
+ * @param {boolean} [spec.snapshot] false: start Pyodide anew rather than from the host's
+ *   snapshot (pyodide_snapshot.mjs)
  * @param {function(object): void} [spec.onLog] as Runtime.spawn's
  * @param {function(object): void} [spec.onExit] as Runtime.spawn's
  * @returns {Promise<NodeProcess>}
@@ -94,6 +98,9 @@ export async function spawnPython(runtime, spec) {
   const { file, name, source, types, where } = isNode ? await nodeSpec(spec) : browserSpec(spec);
   const env = {};
   for (const [k, v] of Object.entries(spec.env || {})) env[k] = String(v);
+  // the host's snapshot of a started Pyodide (made by the first Python node, shared by all)
+  const { snapshot, notes } = spec.snapshot === false ? { snapshot: null, notes: [] }
+    : await pyodideSnapshot(runtime, where);
   const pid = await runtime._allocPid(PROC_KIND_NODE);
   let worker;
   try {
@@ -105,7 +112,10 @@ export async function spawnPython(runtime, spec) {
   const stdinPipe = makeStdinPipe(spec.stdin);
   const proc = new NodeProcess(runtime, pid, name, worker, { ...spec, spawnedAt: performance.now(), stdinPipe });
   runtime.processes.set(pid, proc);
-  worker.on('message', (m) => proc._onMessage(m));
+  worker.on('message', (m) => {
+    if (snapshot && m && m.type === FromWorker.STARTED && !m.pyodideSnapshot) dropPyodideSnapshot(runtime, where);
+    proc._onMessage(m);
+  });
   worker.on('error', (e) => proc._finish({ code: 1, crashed: true, reason: `uncaught error in the Python worker: ${e.message}` }));
   worker.on('exit', ({ code }) => {
     proc._finish({ code, crashed: code !== 0, reason: code !== 0 ? `worker exited with code ${code}` : '' });
@@ -113,7 +123,7 @@ export async function spawnPython(runtime, spec) {
   worker.postMessage({
     type: 'start', bus: runtime.bus.handle, pid, name, file, source, args: (spec.args || []).map(String), env,
     types, stdin: stdinPipe && stdinPipe.sab, pythonPath: (spec.pythonPath || []).map(String),
-    pythonFiles: isNode ? [] : (spec.pythonFiles || []), ...where,
+    pythonFiles: isNode ? [] : (spec.pythonFiles || []), snapshot, notes, ...where,
   });
   return proc;
 }
