@@ -6,7 +6,8 @@
 
 The fixture packages of tests/ros_fixtures (py_words: a library;
 py_chatter: a talker, a listener and a crasher as console_scripts, and a
-launch file; py_native: a C extension) are built by the real colcon on the
+launch file; py_plain: colcon's plain 'python' type, no package.xml;
+py_native: a C extension) are built by the real colcon on the
 demo build as an underlay (tests/demo_build.py), and run with the npm
 package ``pyodide`` of tests/js next to the C++ demo nodes. Every run is
 bounded by ``--duration`` and a subprocess timeout.
@@ -42,7 +43,8 @@ def overlay(tmp_path_factory):
     if not (PYODIDE / 'pyodide.asm.wasm').is_file():
         pytest.skip('the npm package pyodide is missing: run `npm ci` in tests/js')
     underlay = demo_build.demo_install()
-    workspace = _workspace(tmp_path_factory.mktemp('python_overlay'), ('py_words', 'py_chatter'))
+    workspace = _workspace(tmp_path_factory.mktemp('python_overlay'),
+                           ('py_words', 'py_chatter', 'py_plain'))
     colcon(workspace, 'build', '--wasm', '--wasm-underlay', str(underlay))
     # colcon's log of every logger (the INFO lines do not reach the console)
     return workspace, (workspace / 'log' / 'latest_build' / 'logger_all.log').read_text()
@@ -86,6 +88,21 @@ def test_the_build_packs_the_modules_entry_points_and_data_files(overlay):
                         / 'manifest.json').read_text())
     assert words['executables'] == []
     assert f'{folder}/py_words/__init__.py' in words['python']['files']
+
+
+def test_a_plain_python_package_is_packed_and_its_node_heard(overlay):
+    # colcon's 'python' type (setup.cfg, no package.xml): its scripts go to bin/
+    workspace, log = overlay
+    assert "Packed Python package 'py_plain' for Pyodide (shouter)" in log
+    manifest = json.loads((workspace / 'install_wasm' / 'py_plain' / 'share' / 'py_plain'
+                           / 'colcon_wasm' / 'manifest.json').read_text())
+    shouter, = manifest['executables']
+    assert shouter['python'] == {'module': 'py_plain.shouter', 'function': 'main'}
+    assert shouter['js'] == 'bin/shouter'
+    code, out = colcon_wasm(workspace, 'launch', '--duration', 25, 'py_plain/shouter',
+                            'demo_nodes/listener')
+    assert re.search(r'\[listener-2\] .*I heard: \[SHOUTED FROM A PLAIN PACKAGE: \d+\]', out), \
+        out[-6000:]
 
 
 def test_a_packaged_talker_is_heard_by_the_cpp_listener_and_a_crash_is_contained(overlay):

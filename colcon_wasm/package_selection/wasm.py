@@ -11,11 +11,11 @@ priority:
   recipe's extra dependencies (`depends`), so that `--packages-up-to` and the
   build order see them;
 * :class:`WasmPackageSelection` (low priority, runs last, after the user's
-  own selection) unselects what the recipe skips and Python packages of
-  other types than ``ament_python``, checks that nothing selected needs a
-  skipped package, keeps a workspace copy of a bundled package over the
-  bundled one, and switches CMake and ``ament_python`` package types to the
-  `wasm.*` build tasks (``ament_python`` packages are packed for Pyodide).
+  own selection) unselects what the recipe skips and packages of other
+  types than CMake, ``ament_python`` and plain ``python``, checks that
+  nothing selected needs a skipped package, keeps a workspace copy of a
+  bundled package over the bundled one, and switches the package types to
+  the `wasm.*` build tasks (the Python ones are packed for Pyodide).
 """
 
 import os
@@ -56,6 +56,7 @@ given a manifest by colcon_wasm.python_package), and their `wasm.*` names.
 """
 PYTHON_TYPES = {
     'ros.ament_python': 'wasm.ros.ament_python',
+    'python': 'wasm.python',
 }
 
 """
@@ -269,8 +270,8 @@ def _select_one(decorator, recipe):
     else:
         logger.info(
             f"Skipping '{pkg.name}' for --wasm: a '{pkg.type}' package, only "
-            'CMake packages are built to WebAssembly and ament_python packages '
-            'packed for Pyodide')
+            'CMake packages are built to WebAssembly and ament_python and python '
+            'packages packed for Pyodide')
     decorator.selected = False
 
 

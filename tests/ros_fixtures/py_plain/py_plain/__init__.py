@@ -1,0 +1,1 @@
+"""A plain Python package: no package.xml, its metadata in setup.cfg."""
