@@ -240,6 +240,31 @@ def _property(field):
     return property(getter, setter, doc=f'Message field {name!r}.')
 
 
+def _compiled_to_plain(fields):
+    """
+    Message._to_plain written out for one type's fields (it runs once per publish).
+
+    None when a field name is not a Python identifier (Message._to_plain then
+    serves).
+    """
+    parts = []
+    for field in fields:
+        name, kind = field['name'], field['type']
+        if not name.isidentifier():
+            return None
+        nested = kind not in _INT_RANGES and kind not in _FLOATS and \
+            kind not in ('bool', 'string', 'wstring')
+        value = f'self._{name}'
+        if 'array_size' in field or field.get('sequence'):
+            value = f'[v._to_plain() for v in {value}]' if nested else f'list({value})'
+        elif nested:
+            value = f'{value}._to_plain()'
+        parts.append(f'{name!r}: {value}')
+    namespace = {}
+    exec(f"def _to_plain(self):\n    return {{{', '.join(parts)}}}\n", namespace)  # noqa: S102
+    return namespace['_to_plain']
+
+
 def _make_class(full, description, module):
     pkg, kind, name = full.split('/')
     namespace = {
@@ -251,6 +276,9 @@ def _make_class(full, description, module):
     }
     for field in description['fields']:
         namespace[field['name']] = _property(field)
+    to_plain = _compiled_to_plain(description['fields'])
+    if to_plain is not None:
+        namespace['_to_plain'] = to_plain
     for constant in description.get('constants') or []:
         namespace[constant['name']] = constant['value']
     return type(name, (Message,), namespace)
