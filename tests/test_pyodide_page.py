@@ -57,6 +57,9 @@ def test_python_nodes_in_the_page_talk_to_cpp_nodes():
                        '\n'.join(result['logs']['py_listener']))
     assert pairs and all(a == b for a, b in pairs), result['logs']['py_listener']
     assert result['states']['py_talker'] == 'stopped', result['states']
+    # both started from the page's snapshot of a started Pyodide (the first had it made)
+    for name in ('py_talker', 'py_listener'):
+        assert result['snapshots'][name] is True, (result['snapshots'], result['logs'][name][:3])
 
 
 def test_the_python_console_publishes_to_a_cpp_listener():

@@ -5,7 +5,7 @@
 // starts executables with arguments through the page's session, waits for
 // log lines, stops them. Debian's Chromium through playwright-core (never a
 // downloaded browser). Prints one JSON line:
-// {ok, error, logs: {name: [text]}, states: {name: state}, pageErrors}.
+// {ok, error, logs: {name: [text]}, states: {name: state}, snapshots: {name: bool|null}, pageErrors}.
 //
 //   node page_session.mjs '<json: {url, chromium, steps, timeoutMs?}>'
 //
@@ -37,12 +37,15 @@ function pageLogs() {
     const session = window.colconWasm.session;
     const logs = {};
     const states = {};
+    const snapshots = {};
     for (const [name, id] of Object.entries(names)) {
       const proc = session.processes.get(id);
       logs[name] = proc ? proc.log.map((e) => e.text) : [];
       states[name] = proc ? proc.state : 'unknown';
+      // a Python node: started from the page's Pyodide snapshot (python/pyodide_snapshot.mjs)
+      snapshots[name] = proc && proc.handle ? !!proc.handle.pyodideSnapshot : null;
     }
-    return { logs, states };
+    return { logs, states, snapshots };
   }, ids);
 }
 
@@ -113,7 +116,7 @@ try {
 } catch (e) {
   error = String(e && e.message ? e.message : e);
 }
-let result = { logs: {}, states: {} };
+let result = { logs: {}, states: {}, snapshots: {} };
 try {
   if (page) result = await pageLogs();
 } catch (e) {

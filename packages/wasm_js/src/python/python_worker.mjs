@@ -366,7 +366,9 @@ async function startPyodide(msg) {
   const env = { HOME: '/home/pyodide', ...msg.env };
   if (msg.snapshot) {
     try {
-      return { pyodide: await loadPyodide({ indexURL, env, _loadSnapshot: new Uint8Array(msg.snapshot) }), fromSnapshot: true };
+      // a browser's TextDecoder (Pyodide reads the snapshot's header with one) refuses shared memory
+      const bytes = isNode ? new Uint8Array(msg.snapshot) : new Uint8Array(msg.snapshot).slice();
+      return { pyodide: await loadPyodide({ indexURL, env, _loadSnapshot: bytes }), fromSnapshot: true };
     } catch (e) {
       log('stderr', `[WARN] [${stamp()}] [wasm_js]: ${msg.name}: the Pyodide snapshot does not load `
         + `(${e && e.message ? e.message : e}): starting Pyodide anew; the next node makes a new snapshot`);
