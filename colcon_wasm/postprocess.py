@@ -247,8 +247,8 @@ def postprocess_package(*, pkg_name, pkg_version, build_base, install_prefix,
     prefix = Path(install_prefix)
     if fragments is None:
         fragments = glue.load_fragments()
-    executables = find_executables(
-        build_base, read_install_manifest(build_base))
+    installed = read_install_manifest(build_base)
+    executables = find_executables(build_base, installed)
     entries = []
     for executable in sorted(executables, key=lambda e: e.name):
         files = install_companions(executable)
@@ -280,6 +280,11 @@ def postprocess_package(*, pkg_name, pkg_version, build_base, install_prefix,
         if linked is not None:
             entry['linked'] = linked
         entries.append(entry)
+    # its Python modules and scripts (ament_cmake_python): Pyodide runs them
+    from colcon_wasm.cmake_python import python_part
+    python, scripts = python_part(prefix, pkg_name, installed)
+    names = {e['name'] for e in entries}
+    entries += [s for s in scripts if s['name'] not in names]
     manifest = {
         'schema': MANIFEST_SCHEMA,
         'package': pkg_name,
@@ -289,6 +294,8 @@ def postprocess_package(*, pkg_name, pkg_version, build_base, install_prefix,
         'flags': flags,
         'executables': entries,
     }
+    if python is not None:
+        manifest['python'] = python
     write_json_if_changed(
         prefix / 'share' / pkg_name / 'colcon_wasm' / 'manifest.json',
         manifest)

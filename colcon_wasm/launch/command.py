@@ -36,7 +36,8 @@ def make_plan(values, install_base):
                           'colcon-wasm launch demo_nodes/talker demo_nodes/listener')
     install_space = InstallSpace(install_base) if Path(install_base).is_dir() else None
     first = Path(others[0])
-    if len(others) == 1 and (first.is_file() or first.name.endswith(LAUNCH_FILE_SUFFIXES)):
+    if len(others) == 1 and (first.is_file() or first.name.endswith(LAUNCH_FILE_SUFFIXES)) \
+            and not _names_an_executable(install_space, others[0]):
         if not first.is_file():
             raise LaunchError(f"launch file '{first}' does not exist")
         return load_launch_file(first, arguments, install_space=install_space)
@@ -52,6 +53,18 @@ def make_plan(values, install_base):
         given = ', '.join(f'{k}:={v}' for k, v in arguments.items())
         raise LaunchError(f'launch arguments ({given}) need a launch file')
     return plan_items(others)
+
+
+def _names_an_executable(install_space, value):
+    """Check if ``PKG/EXE`` names an executable (e.g. a Python script ``pkg/talker.py``)."""
+    package, _, executable = value.partition('/')
+    if install_space is None or not executable or '/' in executable or Path(value).is_file():
+        return False
+    try:
+        install_space.executable(package, executable)
+    except InstallSpaceError:  # not one: then it is a launch file's path
+        return False
+    return True
 
 
 def _add_python_nodes(description, python, install_space, bases):

@@ -109,9 +109,11 @@ def host_plan(plan, install_space, *, duration=None, echo=(), stdin=False,
         entry['uses_bus'] = executable.uses_bus
         entry['env'] = program_environment(entry['env'], prefixes)
         if executable.python:
-            # an entry point of a Python package: Pyodide runs it (python/spawn.mjs)
+            # an entry point of a Python package, or a Python script a CMake package
+            # installed (run as __main__): Pyodide runs it (python/spawn.mjs)
             entry['python'] = str(executable.js)
-            entry['python_entry'] = dict(executable.python)
+            if 'module' in executable.python:
+                entry['python_entry'] = dict(executable.python)
             entry['python_path'] = [str(f) for f in install_space.python_path()]
         processes.append(entry)
         # the components the link launcher linked into a container (its manifest)

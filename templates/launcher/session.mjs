@@ -233,9 +233,17 @@ export class Session {
     const python = this.workspace.python || {};
     return this.spawnPythonProcess(pkg, info.name, args, `starting ${pkg}/${info.name} (Python) ${args.join(' ')}`,
       async () => ({
-        file: info.file, entry: info.python, pythonPath: python.path || [], pythonFiles: await this.pythonFiles(),
-        stdin: true,
+        file: info.file, pythonPath: python.path || [], pythonFiles: await this.pythonFiles(), stdin: true,
+        // a console_scripts entry point, or a script a CMake package installed (run as __main__)
+        ...(info.python.script ? { source: await this.pythonScript(info) } : { entry: info.python }),
       }));
+  }
+
+  /** The text of a Python script of the install space (served at its executable's URL). */
+  async pythonScript(info) {
+    const response = await fetch(info.url);
+    if (!response.ok) throw new Error(`cannot load the Python script ${info.file}: HTTP ${response.status} for ${info.url}`);
+    return response.text();
   }
 
   /**
