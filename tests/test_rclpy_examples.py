@@ -174,17 +174,19 @@ def test_the_asyncio_action_client_runs_goals_in_parallel_and_in_sequence(overla
     # rclpy/_event_loop.py)
     code, out = launch(overlay, 'examples_rclcpp_minimal_action_server/'
                        'action_server_member_functions',
-                       'examples_rclpy_minimal_action_client/client_asyncio', duration=75)
+                       'examples_rclpy_minimal_action_client/client_asyncio', duration=100)
     sequence = r"array\('i', \[0, 1, 1, 2, 3, 5, 8, 13, 21, 34, 55\]\)"
     client = 'client_asyncio-2'
     assert len(log(out, client, 'minimal_action_client_asyncio',
                    f'Goal succeeded! Result: {sequence}')) == 4, out[-6000:]
     assert log(out, client, 'minimal_action_client', 'unfinished: 0'), out[-6000:]
+    # the results as rosidl_generator_py's __repr__ prints them
+    result = rf'example_interfaces\.action\.Fibonacci_Result\(sequence={sequence}\)'
     assert len(log(out, client, 'minimal_action_client',
-                   f'result {sequence} and status flag 4')) == 2, out[-6000:]
+                   f'result {result} and status flag 4')) == 2, out[-6000:]
     for step in 'AB':
         assert log(out, client, 'minimal_action_client',
-                   rf'{step}\) result {sequence} and status flag 4'), out[-6000:]
+                   rf'{step}\) result {result} and status flag 4'), out[-6000:]
     assert f'[INFO] [{client}]: process has finished cleanly' in out, out[-6000:]
 
 
