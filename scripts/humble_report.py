@@ -29,7 +29,7 @@ from colcon_wasm.recipe import load_recipe  # noqa: E402
 from colcon_wasm.toolchain import find_emscripten  # noqa: E402
 
 WASM_TYPES = ('cmake', 'ros.cmake', 'ros.ament_cmake')
-PYTHON_TYPES = ('ros.ament_python',)  # packed for Pyodide (colcon_wasm/python_package.py)
+PYTHON_TYPES = ('ros.ament_python', 'python')  # packed for Pyodide (colcon_wasm/python_package.py)
 
 
 def list_packages(workspace):
@@ -66,7 +66,7 @@ def classify(name, kind, recipe, results):
     if reason:
         return 'skipped', reason
     if kind not in WASM_TYPES and kind not in PYTHON_TYPES and name not in recipe.host_tools:
-        return 'skipped', f'Python ({kind}): only ament_python packages are packed for Pyodide'
+        return 'skipped', f'Python ({kind}): only ament_python and python packages are packed for Pyodide'
     if name in results:
         if results[name] == 0:
             if name in recipe.host_tools:
