@@ -19,7 +19,8 @@ __all__ = [
     'LAUNCHER_VERIFY_ENVIRONMENT_VARIABLE', 'NODE_ENVIRONMENT_VARIABLE',
     'PREFIX_PATH_ENVIRONMENT_VARIABLE', 'PTHREAD_POOL_SIZE_ENVIRONMENT_VARIABLE',
     'ROSBRIDGE_DEBUG_ENVIRONMENT_VARIABLE', 'FOXGLOVE_DEBUG_ENVIRONMENT_VARIABLE',
-    'PYODIDE_ENVIRONMENT_VARIABLE', 'ZENOH_DEBUG_ENVIRONMENT_VARIABLE',
+    'PYODIDE_ENVIRONMENT_VARIABLE', 'PYODIDE_SNAPSHOT_ENVIRONMENT_VARIABLE',
+    'ZENOH_DEBUG_ENVIRONMENT_VARIABLE',
 ]
 
 """The Node.js that runs `colcon test --wasm` tests and `colcon-wasm run/launch`."""
@@ -66,3 +67,9 @@ PYODIDE_ENVIRONMENT_VARIABLE = EnvironmentVariable(
     'COLCON_WASM_PYODIDE',
     'The folder of the Pyodide npm package Python nodes run in (colcon-wasm run/launch '
     '--python; default: the one colcon-wasm doctor names)')
+
+"""Whether Python nodes start from the host's Pyodide snapshot (python/pyodide_snapshot.mjs)."""
+PYODIDE_SNAPSHOT_ENVIRONMENT_VARIABLE = EnvironmentVariable(
+    'COLCON_WASM_PYODIDE_SNAPSHOT',
+    'Set to 0: every Python node starts Pyodide anew rather than from the snapshot of a '
+    'started Pyodide the first node of a host makes (kept in COLCON_WASM_CACHE)')

@@ -66,7 +66,8 @@ def classify(name, kind, recipe, results):
     if reason:
         return 'skipped', reason
     if kind not in WASM_TYPES and kind not in PYTHON_TYPES and name not in recipe.host_tools:
-        return 'skipped', f'Python ({kind}): only ament_python and python packages are packed for Pyodide'
+        return 'skipped', \
+            f'Python ({kind}): only ament_python and python packages are packed for Pyodide'
     if name in results:
         if results[name] == 0:
             if name in recipe.host_tools:
