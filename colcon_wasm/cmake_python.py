@@ -54,26 +54,18 @@ def python_part(prefix, pkg_name, installed):
     prefix = Path(prefix)
     installed = [Path(p) for p in installed]
     folders = module_folders(prefix)
-    files, native = [], []
-    for path in sorted(installed):
-        relative = _relative(path, prefix)
-        if relative is None or '__pycache__' in path.parts:
-            continue
-        if any(relative.startswith(folder + '/') for folder in folders) and path.is_file():
-            (native if path.name.endswith(NATIVE_SUFFIXES) else files).append(relative)
-    if native:
-        logger.warning(
-            f"'{pkg_name}' installs compiled Python extension modules ({', '.join(native)}): "
-            'Pyodide cannot load them, and an import of them fails in a Python node')
-    scripts = []
+    files, native, scripts = [], [], []
     script_folder = f'lib/{pkg_name}/'
     for path in sorted(installed):
         relative = _relative(path, prefix)
-        if relative is None or not relative.startswith(script_folder) or \
-                path.suffix in ('.js', '.wasm') or not path.is_file():
+        if relative is None or '__pycache__' in path.parts or not path.is_file():
+            continue
+        if any(relative.startswith(folder + '/') for folder in folders):
+            (native if path.name.endswith(NATIVE_SUFFIXES) else files).append(relative)
             continue
         name = relative[len(script_folder):]
-        if '/' not in name and is_python_script(path):
+        if relative.startswith(script_folder) and '/' not in name and \
+                path.suffix not in ('.js', '.wasm') and is_python_script(path):
             scripts.append({
                 'name': name,
                 'js': relative,
@@ -81,6 +73,10 @@ def python_part(prefix, pkg_name, installed):
                 'uses_bus': True,
                 'pthread': False,
             })
+    if native:
+        logger.warning(
+            f"'{pkg_name}' installs compiled Python extension modules ({', '.join(native)}): "
+            'Pyodide cannot load them, and an import of them fails in a Python node')
     python = {'path': folders, 'files': files} if files else None
     return python, scripts
 

@@ -66,6 +66,17 @@ export function withNamespaceFromEnvironment(args, env) {
 }
 
 /**
+ * A warning of the runtime about a process, as rcutils formats a log line
+ * (`[WARN] [sec.nsec] [wasm_js]: NAME: text`), for its stderr.
+ * @param {string} name the process' name
+ * @param {string} text
+ * @returns {string}
+ */
+export function runtimeWarning(name, text) {
+  return `[WARN] [${(Date.now() / 1000).toFixed(9)}] [wasm_js]: ${name}: ${text}`;
+}
+
+/**
  * Run `load` (the glue) with pre-started pthread workers in place of new
  * ones. Emscripten's glue makes its pthread pool while it loads, with
  * `new Worker(url)` (Emscripten 3.1.6: the pool's worker script, no
@@ -403,10 +414,10 @@ export async function startProcess(msg, platform) {
     if (exitRing) {
       recycleEndedThreads(globalThis.PThread, exitRing, (running) => post({
         type: FromWorker.LOG, stream: 'stderr',
-        text: `[WARN] [${(Date.now() / 1000).toFixed(9)}] [wasm_js]: ${msg.name}: ${running + 1} threads at once, more than its pthread `
+        text: runtimeWarning(msg.name, `${running + 1} threads at once, more than its pthread `
           + `pool of ${pthreadPool.taken} workers: starting another one${isNode ? ''
             : ', which a browser starts only when main() returns to its event loop (the thread waits until then)'}; `
-          + 'rebuild with a larger --wasm-pthread-pool-size to have them started ahead',
+          + 'rebuild with a larger --wasm-pthread-pool-size to have them started ahead'),
       }));
     }
     if (pthreadPool && pthreadPool.taken) loadPthreadWorkers = deferPthreadWorkerLoads(pthreadPool.readyWorkers);

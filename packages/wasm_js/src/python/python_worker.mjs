@@ -21,7 +21,7 @@ import {
 } from '../bus_client.mjs';
 import { normalizeTypeName, TypeRegistry } from '../cdr.mjs';
 import { HEADER } from '../layout.mjs';
-import { blockingStdinRead } from '../program_worker.mjs';
+import { blockingStdinRead, runtimeWarning } from '../program_worker.mjs';
 import { FromWorker } from '../protocol.mjs';
 import { StdinPipe } from '../stdin_pipe.mjs';
 import { RCLPY_FILES } from './rclpy_files.mjs';
@@ -312,7 +312,7 @@ async function start(msg) {
   if (!registry.has('std_msgs/msg/String')) registry.add(STD_MSGS_STRING);
   if (!registry.has('builtin_interfaces/msg/Time')) registry.add(BUILTIN_INTERFACES);
   if (!registry.has('rosgraph_msgs/msg/Clock')) registry.add(ROSGRAPH_CLOCK);
-  for (const note of msg.notes || []) log('stderr', `[WARN] [${stamp()}] [wasm_js]: ${msg.name}: ${note}`);
+  for (const note of msg.notes || []) log('stderr', runtimeWarning(msg.name, note));
   const { pyodide, fromSnapshot } = await startPyodide(msg);
   pyodide.setStdout({ batched: (line) => log('stdout', line) });
   pyodide.setStderr({ batched: (line) => log('stderr', line) });
@@ -352,11 +352,6 @@ async function start(msg) {
   post({ type: FromWorker.EXIT, code, crashed: code !== 0, reason, memoryCopy: false });
 }
 
-/** rcutils' stamp of a log line: seconds.nanoseconds of the wall clock. */
-function stamp() {
-  return (Date.now() / 1000).toFixed(9);
-}
-
 /**
  * Load Pyodide: from the host's snapshot when it gives one (pyodide_snapshot.mjs), else
  * anew; a snapshot that does not load costs a warning and a fresh start.
@@ -370,8 +365,8 @@ async function startPyodide(msg) {
       const bytes = isNode ? new Uint8Array(msg.snapshot) : new Uint8Array(msg.snapshot).slice();
       return { pyodide: await loadPyodide({ indexURL, env, _loadSnapshot: bytes }), fromSnapshot: true };
     } catch (e) {
-      log('stderr', `[WARN] [${stamp()}] [wasm_js]: ${msg.name}: the Pyodide snapshot does not load `
-        + `(${e && e.message ? e.message : e}): starting Pyodide anew; the next node makes a new snapshot`);
+      log('stderr', runtimeWarning(msg.name, 'the Pyodide snapshot does not load '
+        + `(${e && e.message ? e.message : e}): starting Pyodide anew; the next node makes a new snapshot`));
     }
   }
   return { pyodide: await loadPyodide({ indexURL, env }), fromSnapshot: false };

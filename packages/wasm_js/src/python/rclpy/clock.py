@@ -51,8 +51,8 @@ class Clock:
         False when it woke for another reason, as rclpy's: the context
         (default: the default one) was shut down, or simulated time was
         switched on or off (the epoch changed). A ROS clock on simulated
-        time sleeps until ``/clock`` reaches ``until``. The sleep is
-        time.sleep's (rclpy.executors): in a MultiThreadedExecutor's
+        time sleeps until ``/clock`` reaches ``until``. It waits
+        with rclpy.executors.wait_a_while: in a MultiThreadedExecutor's
         callback, the other callbacks run meanwhile.
         """
         from rclpy.context import default_context
@@ -80,8 +80,9 @@ class Clock:
         return False
 
     def _wait(self, seconds):
-        """Wait for time to pass: at most ``seconds``, a quarter second at a time."""
-        _time.sleep(min(seconds, 0.25))
+        """Wait for time to pass, at most ``seconds`` (sleep_until checks what woke it)."""
+        from rclpy.executors import wait_a_while
+        wait_a_while(seconds)
 
 
 class ROSClock(Clock):

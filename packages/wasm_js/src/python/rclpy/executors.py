@@ -70,6 +70,20 @@ def sleep_spins():
     return isinstance(executor, MultiThreadedExecutor) and executor.context.ok()
 
 
+def wait_a_while(seconds):
+    """
+    Let time pass, at most ``seconds``, for a sleep that checks its own end.
+
+    In a MultiThreadedExecutor's callback, until the executor's next ready
+    callbacks have run (a message for the sleeper may be among them);
+    elsewhere, nothing else runs meanwhile: the whole ``seconds``.
+    """
+    if sleep_spins():
+        _DISPATCHING[-1].spin_once(timeout_sec=seconds)
+    else:
+        _wait(seconds)
+
+
 def sleep(seconds):
     """Do what time.sleep does (this module installs it as time.sleep; see above)."""
     if seconds < 0:

@@ -408,9 +408,9 @@ class Node:
         self._overrides = self.context.parameter_overrides(node_name, cli_args)
         self._overrides.update((p.name, p.value) for p in parameter_overrides or ())
         self._allow_undeclared = allow_undeclared_parameters
-        self._parameters.update((name, Parameter(name, value=value))
-                                for name, value in self._overrides.items()
-                                if automatically_declare_parameters_from_overrides)
+        if automatically_declare_parameters_from_overrides:
+            self._parameters.update((name, Parameter(name, value=value))
+                                    for name, value in self._overrides.items())
         self.context._nodes.append(self)
         self._parameter_service = None
         if kwargs.get('start_parameter_services', True) and parameter_service.available():

@@ -13,8 +13,6 @@ a sleep on the clock (``Clock.sleep_until``, ``Rate.sleep``) outside of a
 spin takes them itself, as rclpy's executor thread would.
 """
 
-import time
-
 from rclpy.clock import ROSClock
 from rclpy.parameter import SetParametersResult
 from rclpy.qos import QoSProfile
@@ -69,7 +67,7 @@ class TimeSource:
         subscription = self._subscription
         if executors.sleep_spins() or subscription is None or subscription._handle is None:
             # a MultiThreadedExecutor's callback: its spin takes /clock with the rest
-            time.sleep(0.05)
+            executors.wait_a_while(0.1)
             return
         executors.wait_for(subscription, 0.1)
         msg = subscription._take()
