@@ -8,8 +8,10 @@ XML and YAML launch files, --duration, the exit status when a node crashes,
 --echo: each through the real `colcon-wasm` command.
 """
 
+import os
 from pathlib import Path
 import re
+import signal
 import subprocess
 import sys
 import time
@@ -102,3 +104,27 @@ def test_a_missing_executable_is_a_clear_error(install):
                           '(it has: '), err
     for name in ('talker', 'listener', 'add_two_ints_server', 'oscillator', 'crasher'):
         assert name in err
+
+
+def test_sigterm_to_the_command_stops_the_nodes(install):
+    # a supervisor (systemd, a test harness, `kill PID`) signals colcon-wasm alone, not its
+    # process group: the Node host must not be left running the nodes
+    process = subprocess.Popen(
+        [str(demo_build.venv_tool('colcon-wasm')), 'launch', '--install-base', str(install),
+         'demo_nodes/talker'], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+        start_new_session=True)
+    try:
+        for line in process.stdout:
+            if "Publishing: 'Hello World: 1'" in line:
+                break
+        process.send_signal(signal.SIGTERM)
+        # the pipe ends only when the host, which holds it too, has ended
+        rest, _ = process.communicate(timeout=30)
+        assert process.returncode == 0, rest
+    finally:
+        try:  # the command's process group: the host too, should it have outlived the command
+            os.killpg(process.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+    assert '[INFO] [launch]: terminated (SIGTERM)' in rest, rest
+    assert '[INFO] [talker-1]: process stopped' in rest, rest

@@ -148,9 +148,11 @@ def run_host(description, runtime_module, host_dir, *, node=None, stdout=None, s
     The host script comes with colcon-wasm (``host_dir``, it reads this
     plan); the Runtime it imports is the install space's (``runtime_module``,
     it matches the executables). Ctrl-C reaches the host (same process
-    group); this process waits for it to stop its nodes, so the host's status
-    is the command's status. ``pass_fds`` go to the host (record and replay
-    pipes); ``started()`` is called once it runs.
+    group); a SIGTERM sent to this process alone (a supervisor, ``kill``) is
+    passed on to the host, which stops its nodes as for Ctrl-C. This process
+    waits for the host, so the host's status is the command's status.
+    ``pass_fds`` go to the host (record and replay pipes); ``started()`` is
+    called once it runs.
     """
     script = Path(host_dir) / HOST_SCRIPT
     if not script.is_file():
@@ -158,16 +160,27 @@ def run_host(description, runtime_module, host_dir, *, node=None, stdout=None, s
     description = dict(description, runtime=Path(runtime_module).as_uri())
     command = [node or find_node(), str(script), json.dumps(description)]
     main_thread = threading.current_thread() is threading.main_thread()
-    previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main_thread else None
+    host = []
+    if main_thread:
+        previous_int = signal.signal(signal.SIGINT, signal.SIG_IGN)
+        previous_term = signal.signal(signal.SIGTERM, lambda *_: _pass_on(host, signal.SIGTERM))
     try:
         process = subprocess.Popen(command, stdout=stdout, stderr=stderr, pass_fds=pass_fds,
                                    preexec_fn=_default_sigint if main_thread else None)
+        host.append(process)
         if started:
             started()
         return process.wait()
     finally:
         if main_thread:
-            signal.signal(signal.SIGINT, previous)
+            signal.signal(signal.SIGINT, previous_int)
+            signal.signal(signal.SIGTERM, previous_term)
+
+
+def _pass_on(host, signum):
+    """Send `signum` to the host process once it is started."""
+    if host and host[0].poll() is None:
+        host[0].send_signal(signum)
 
 
 def _default_sigint():
