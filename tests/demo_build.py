@@ -3,6 +3,7 @@
 
 """Build the bundled demo workspace once per test run, with the real colcon build --wasm."""
 
+import atexit
 import os
 from pathlib import Path
 import shutil
@@ -36,6 +37,7 @@ def demo_install():
         if 'install' in _built:
             return _built['install']
         workspace = Path(tempfile.mkdtemp(prefix='colcon-wasm-demo-'))
+        atexit.register(shutil.rmtree, workspace, ignore_errors=True)  # once the run is over
         shutil.copytree(REPO / 'demo' / 'src', workspace / 'src')
         command = ['nice', '-n', '10', str(venv_tool('colcon')), 'build', '--wasm',
                    '--event-handlers', 'console_cohesion+']

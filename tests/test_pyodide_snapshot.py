@@ -52,10 +52,13 @@ def said(report, i):
 
 
 def test_nodes_start_from_one_snapshot_with_their_own_arguments(tmp_path):
-    reports = run_nodes(tmp_path, 2)
+    reports = run_nodes(tmp_path, 3)
     for i, report in enumerate(reports):
         assert report['code'] == 0 and report['snapshot'], report
         assert said(report, i) in report['lines'], report
+    # the first node starts its own worker; each next one takes the warm Python worker that
+    # the runtime loaded meanwhile (python_spares.mjs), with its own argv and environment
+    assert [r['warm'] for r in reports] == [False, True, True], reports
     files = kept(tmp_path)
     assert len(files) == 1 and files[0].stat().st_size > 1 << 20, files
     # the next host starts from the kept copy: it is not written again
@@ -83,8 +86,11 @@ def test_a_bad_snapshot_costs_a_warning_and_is_replaced(tmp_path):
 def test_snapshots_can_be_turned_off(tmp_path):
     report, = run_nodes(tmp_path, 1, snapshot_env='0')
     assert report['code'] == 0 and not report['snapshot'] and said(report, 0) in report['lines']
-    report, = run_nodes(tmp_path, 1, 'snapshot=false')
-    assert report['code'] == 0 and not report['snapshot'] and said(report, 0) in report['lines']
+    # without snapshots there is no warm Python worker either: every node starts cold
+    reports = run_nodes(tmp_path, 2, 'snapshot=false')
+    for i, report in enumerate(reports):
+        assert report['code'] == 0 and not report['snapshot'] and not report['warm'], report
+        assert said(report, i) in report['lines'], report
     assert not kept(tmp_path)
 
 

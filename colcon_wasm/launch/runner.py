@@ -177,10 +177,10 @@ def run_host(description, runtime_module, host_dir, *, node=None, stdout=None, s
             signal.signal(signal.SIGTERM, previous_term)
 
 
-def _pass_on(host, signum):
-    """Send `signum` to the host process once it is started."""
+def _pass_on(host, number):
+    """Send the signal `number` to the host process once it is started."""
     if host and host[0].poll() is None:
-        host[0].send_signal(signum)
+        host[0].send_signal(number)
 
 
 def _default_sigint():

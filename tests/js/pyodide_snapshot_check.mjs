@@ -4,7 +4,8 @@
 //
 // Runs SCRIPT as COUNT Python nodes, one after the other, on one Runtime of SRC
 // (packages/wasm_js/src), each with its own argv and environment; prints one JSON
-// line per node: {snapshot (started from the host's snapshot), code, lines}.
+// line per node: {snapshot (started from the host's snapshot), warm (it took the runtime's
+// warm Python worker), code, lines}.
 // tests/test_pyodide_snapshot.py.
 
 const [src, pyodideDir, script, count, option] = process.argv.slice(2);
@@ -20,7 +21,7 @@ try {
       onLog: (l) => lines.push(l.text), ...(option === 'snapshot=false' ? { snapshot: false } : {}),
     });
     const { code } = await proc.exited;
-    console.log(JSON.stringify({ snapshot: proc.pyodideSnapshot, code, lines }));
+    console.log(JSON.stringify({ snapshot: proc.pyodideSnapshot, warm: proc.warmPythonWorker, code, lines }));
   }
 } finally {
   await runtime.close();

@@ -87,6 +87,11 @@ export class NodeProcess {
      */
     this.pyodideSnapshot = false;
     /**
+     * A Python node: true when it took the runtime's warm Python worker, whose
+     * Pyodide was loaded before the spawn (python/python_spares.mjs).
+     */
+    this.warmPythonWorker = false;
+    /**
      * Known once the program has exited by itself: true when its main
      * thread copied messages between its heap and the bus with
      * memory.copy (the bus is a WebAssembly.Memory, see copier.mjs), false

@@ -149,7 +149,17 @@ export class Runtime {
     this._warmPthreadWorkers = options.warmPthreadWorkers === undefined
       ? FALLBACK_PTHREAD_POOL_SIZE : options.warmPthreadWorkers;
     this._spares = [];
+    this._closeHooks = [];
     this._fillSpares();
+  }
+
+  /**
+   * Have `fn` run when the runtime closes, before its processes stop (the
+   * warm workers of other modules, e.g. python/python_spares.mjs).
+   * @param {function(): (Promise<void>|void)} fn
+   */
+  _atClose(fn) {
+    this._closeHooks.push(fn);
   }
 
   /**
@@ -488,6 +498,7 @@ export class Runtime {
     this._spares = [];
     this._warm = 0;
     await Promise.all(spares.map((s) => s.host.then((w) => w.terminate(), () => {})));
+    await Promise.all(this._closeHooks.splice(0).map((fn) => Promise.resolve().then(fn).catch(() => {})));
     await Promise.all([...this.processes.values()].map((p) => p.stop()));
     if (this._tools) {
       const tools = await this._tools;

@@ -3,16 +3,18 @@
 /**
  * A memory snapshot of a started Pyodide, shared by the Python nodes of one
  * host: the first Python node of a runtime has a worker load Pyodide once,
- * import the standard modules rclpy uses and take a snapshot of its memory
- * (Pyodide's `makeMemorySnapshot`); every Python node then starts from it
+ * import the standard modules rclpy uses and rclpy itself
+ * (SNAPSHOT_RCLPY_MODULES: its modules hold no bus and no JavaScript object
+ * until a node attaches them) and take a snapshot of its memory (Pyodide's
+ * `makeMemorySnapshot`); every Python node then starts from it
  * (`loadPyodide({_loadSnapshot})`) instead of starting the interpreter
  * anew, a few hundred milliseconds instead of seconds. The snapshot lives
  * in a SharedArrayBuffer, so the nodes share one copy.
  *
  * In Node.js the snapshot is also kept on disk
  * (`$COLCON_WASM_CACHE/pyodide-snapshots/`, default
- * `~/.cache/colcon-wasm`), keyed by Pyodide's version and binary and by the
- * prelude below, so the next launch starts warm too.
+ * `~/.cache/colcon-wasm`), keyed by Pyodide's version and binary, by the
+ * prelude below and by rclpy's sources, so the next launch starts warm too.
  * `COLCON_WASM_PYODIDE_SNAPSHOT=0` (or the spawn option `snapshot: false`)
  * starts every node cold. A snapshot that cannot be made or loaded costs a
  * warning and a cold start, nothing else.
@@ -21,6 +23,7 @@
  */
 
 import { ProgramWorker, isNode, siblingUrl } from '../platform.mjs';
+import { RCLPY_FILES, SNAPSHOT_RCLPY_MODULES } from './rclpy_files.mjs';
 
 /**
  * The Python run before the snapshot: the standard modules rclpy and the
@@ -35,7 +38,7 @@ export const SNAPSHOT_PRELUDE = [
 ].join('\n');
 
 /** Bumped when what a snapshot holds changes in a way the key does not see. */
-const SNAPSHOT_FORMAT = 1;
+const SNAPSHOT_FORMAT = 2;
 
 /** runtime -> Map(where key -> Promise<{snapshot, notes}>) */
 const perRuntime = new WeakMap();
@@ -136,9 +139,11 @@ async function cacheFile(pyodideDir) {
   } catch (e) {
     // checked by spawn.mjs' checkPyodide; the binary's size and time tell versions apart anyway
   }
-  const key = crypto.createHash('sha256')
-    .update(JSON.stringify([SNAPSHOT_FORMAT, version, wasm.size, wasm.mtimeMs, SNAPSHOT_PRELUDE]))
-    .digest('hex').slice(0, 16);
+  const hash = crypto.createHash('sha256')
+    .update(JSON.stringify([SNAPSHOT_FORMAT, version, wasm.size, wasm.mtimeMs, SNAPSHOT_PRELUDE,
+      SNAPSHOT_RCLPY_MODULES]));
+  for (const rel of RCLPY_FILES) hash.update(rel).update(fs.readFileSync(new URL(rel, import.meta.url)));
+  const key = hash.digest('hex').slice(0, 16);
   const root = process.env.COLCON_WASM_CACHE || path.join(os.homedir(), '.cache', 'colcon-wasm');
   return path.join(root, 'pyodide-snapshots', `pyodide-${version}-${key}.snapshot`);
 }

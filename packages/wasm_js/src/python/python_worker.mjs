@@ -24,7 +24,7 @@ import { HEADER } from '../layout.mjs';
 import { blockingStdinRead, runtimeWarning } from '../program_worker.mjs';
 import { FromWorker } from '../protocol.mjs';
 import { StdinPipe } from '../stdin_pipe.mjs';
-import { RCLPY_FILES } from './rclpy_files.mjs';
+import { RCLPY_FILES, SNAPSHOT_RCLPY_MODULES } from './rclpy_files.mjs';
 
 /** Where the rclpy package lives inside Pyodide's file system. */
 const PYTHON_ROOT = '/colcon_wasm/python';
@@ -70,7 +70,10 @@ const ROSGRAPH_CLOCK = {
 };
 
 const post = (m) => port.postMessage(m);
-const log = (stream, text) => post({ type: FromWorker.LOG, stream, text: String(text) });
+const log = (stream, text) => {
+  if (heldLogs) heldLogs.push([stream, String(text)]);
+  else post({ type: FromWorker.LOG, stream, text: String(text) });
+};
 
 /** The text of a file of the rclpy package beside this module. */
 async function rclpyFile(rel) {
@@ -82,6 +85,16 @@ async function rclpyFile(rel) {
   const response = await fetch(url);
   if (!response.ok) throw new Error(`cannot load ${url}: HTTP ${response.status}`);
   return response.text();
+}
+
+/** Write the rclpy package beside this module into Pyodide's file system (PYTHON_ROOT). */
+async function writeRclpy(pyodide) {
+  const sources = await Promise.all(RCLPY_FILES.map(rclpyFile));
+  RCLPY_FILES.forEach((rel, i) => {
+    const target = `${PYTHON_ROOT}/${rel}`;
+    pyodide.FS.mkdirTree(target.slice(0, target.lastIndexOf('/')));
+    pyodide.FS.writeFile(target, sources[i]);
+  });
 }
 
 /** Import Pyodide's loader from its folder (Node.js) or URL (browser). */
@@ -269,9 +282,12 @@ def _colcon_wasm_run(file, source, args, env):
     sys.path.insert(0, os.path.dirname(file))
     glb = {'__name__': '__main__', '__file__': file, '__builtins__': __builtins__}
     try:
-        # rclpy puts the finder of the install space's message modules on sys.meta_path:
+        # rclpy (imported already when Pyodide came from the host's snapshot) takes the bus
+        # and puts the finder of the install space's message modules on sys.meta_path:
         # 'from std_msgs.msg import String' before 'import rclpy' works, as natively
-        import rclpy  # noqa: F401
+        import _colcon_wasm_bus
+        import rclpy
+        rclpy._attach_to_worker(_colcon_wasm_bus)
         exec(compile(source, file, 'exec'), glb)
     except SystemExit as e:
         if e.code is None:
@@ -313,7 +329,7 @@ async function start(msg) {
   if (!registry.has('builtin_interfaces/msg/Time')) registry.add(BUILTIN_INTERFACES);
   if (!registry.has('rosgraph_msgs/msg/Clock')) registry.add(ROSGRAPH_CLOCK);
   for (const note of msg.notes || []) log('stderr', runtimeWarning(msg.name, note));
-  const { pyodide, fromSnapshot } = await startPyodide(msg);
+  const { pyodide, fromSnapshot } = await (preloaded || startPyodide(msg));
   pyodide.setStdout({ batched: (line) => log('stdout', line) });
   pyodide.setStderr({ batched: (line) => log('stderr', line) });
   if (msg.stdin) {
@@ -321,13 +337,7 @@ async function start(msg) {
     const read = blockingStdinRead(new StdinPipe(msg.stdin), client);
     pyodide.setStdin({ read: (buffer) => read(null, buffer, 0, buffer.length) });
   }
-  // rclpy, from beside this module
-  const sources = await Promise.all(RCLPY_FILES.map(rclpyFile));
-  RCLPY_FILES.forEach((rel, i) => {
-    const target = `${PYTHON_ROOT}/${rel}`;
-    pyodide.FS.mkdirTree(target.slice(0, target.lastIndexOf('/')));
-    pyodide.FS.writeFile(target, sources[i]);
-  });
+  await writeRclpy(pyodide);
   // the install space's Python packages: at their real paths, first on sys.path
   for (const folder of msg.pythonPath || []) {
     if (isNode) pyodide.mountNodeFS(folder, folder);
@@ -381,6 +391,12 @@ async function snapshot(msg) {
     const { loadPyodide, indexURL } = await importPyodide(msg);
     const pyodide = await loadPyodide({ indexURL, env: { HOME: '/home/pyodide' }, _makeSnapshot: true });
     pyodide.runPython(msg.prelude, { filename: '<colcon-wasm snapshot prelude>' });
+    // rclpy's modules, compiled and imported once for every node of the host (a node
+    // writes the files again, for its tracebacks and for the modules imported later)
+    await writeRclpy(pyodide);
+    pyodide.runPython(`import sys\nsys.path.insert(0, ${JSON.stringify(PYTHON_ROOT)})\n`
+      + `import ${SNAPSHOT_RCLPY_MODULES.join(', ')}\nsys.path.remove(${JSON.stringify(PYTHON_ROOT)})`,
+    { filename: '<colcon-wasm snapshot prelude>' });
     const bytes = pyodide.makeMemorySnapshot();
     const shared = new SharedArrayBuffer(bytes.length);
     new Uint8Array(shared).set(bytes);
@@ -390,19 +406,40 @@ async function snapshot(msg) {
   }
 }
 
+/**
+ * A warm worker (python_spares.mjs): Pyodide loading from the host's snapshot
+ * before there is a node; its warnings wait for the node's log.
+ */
+let preloaded = null;
+let heldLogs = null;
+
+function preload(msg) {
+  heldLogs = [];
+  preloaded = startPyodide(msg);
+  preloaded.catch(() => {});
+}
+
 let started = false;
 const onStart = (msg) => {
-  if (!started && msg && msg.type === 'snapshot') {
+  if (!started && !preloaded && msg && msg.type === 'snapshot') {
     started = true;
     snapshot(msg);
     return;
   }
+  if (!started && !preloaded && msg && msg.type === 'preload') {
+    preload(msg);
+    return;
+  }
   if (started || !msg || msg.type !== 'start') return;
   started = true;
+  if (heldLogs) {
+    for (const [stream, text] of heldLogs) post({ type: FromWorker.LOG, stream, text });
+    heldLogs = null;
+  }
   start(msg).catch((e) => {
     log('stderr', `[ERROR] [${msg.name}]: the Python worker failed: ${e && e.stack ? e.stack : e}`);
     post({ type: FromWorker.EXIT, code: 1, crashed: true, reason: `the Python worker failed: ${e && e.message ? e.message : e}` });
   });
 };
-if (isNode) port.once('message', onStart);
+if (isNode) port.on('message', onStart);
 else port.onmessage = (e) => onStart(e.data);

@@ -36,3 +36,13 @@ export const RCLPY_FILES = Object.freeze([
   'rclpy/time_source.py',
   'rclpy/topic_endpoint_info.py',
 ]);
+
+/**
+ * The rclpy modules imported into the host's Pyodide snapshot
+ * (pyodide_snapshot.mjs): every module whose import needs neither the bus
+ * nor a message type (rclpy.action needs action_msgs' types: it is
+ * imported by the nodes that use it).
+ */
+export const SNAPSHOT_RCLPY_MODULES = Object.freeze([
+  'rclpy', 'rclpy.node', 'rclpy.executors', 'rclpy.duration', 'rclpy.time',
+]);

@@ -28,6 +28,7 @@ import { ProgramWorker, isNode, siblingUrl } from '../platform.mjs';
 import { makeStdinPipe } from '../node_process.mjs';
 import { NodeProcess } from '../runtime.mjs';
 import { dropPyodideSnapshot, pyodideSnapshot } from './pyodide_snapshot.mjs';
+import { fillSparePython, takeSparePython } from './python_spares.mjs';
 
 /** The Pyodide release (npm package `pyodide`) this runtime is written and tested for. */
 export const PYODIDE_VERSION = '314.0.8';
@@ -102,18 +103,25 @@ export async function spawnPython(runtime, spec) {
   const { snapshot, notes } = spec.snapshot === false ? { snapshot: null, notes: [] }
     : await pyodideSnapshot(runtime, where);
   const pid = await runtime._allocPid(PROC_KIND_NODE);
-  let worker;
+  // the runtime's warm Python worker (Pyodide loaded already), when it has one
+  let worker = snapshot ? takeSparePython(runtime, where) : null;
+  const warm = worker !== null;
   try {
-    worker = await ProgramWorker.start(siblingUrl('python/python_worker.mjs'), { name: `python ${name}`, type: 'module' });
+    if (!worker) worker = await ProgramWorker.start(siblingUrl('python/python_worker.mjs'), { name: `python ${name}`, type: 'module' });
   } catch (e) {
     await runtime._reap(pid, null);
     throw new BusError(Code.ERROR, `spawnPython '${name}': cannot start a worker: ${e.message}`);
   }
   const stdinPipe = makeStdinPipe(spec.stdin);
   const proc = new NodeProcess(runtime, pid, name, worker, { ...spec, spawnedAt: performance.now(), stdinPipe });
+  proc.warmPythonWorker = warm;
   runtime.processes.set(pid, proc);
   worker.on('message', (m) => {
-    if (snapshot && m && m.type === FromWorker.STARTED && !m.pyodideSnapshot) dropPyodideSnapshot(runtime, where);
+    if (snapshot && m && m.type === FromWorker.STARTED) {
+      // a snapshot that loaded: a warm worker is made from it for the next Python node
+      if (m.pyodideSnapshot) fillSparePython(runtime, where, snapshot, proc.settled);
+      else dropPyodideSnapshot(runtime, where);
+    }
     proc._onMessage(m);
   });
   worker.on('error', (e) => proc._finish({ code: 1, crashed: true, reason: `uncaught error in the Python worker: ${e.message}` }));
@@ -123,7 +131,7 @@ export async function spawnPython(runtime, spec) {
   worker.postMessage({
     type: 'start', bus: runtime.bus.handle, pid, name, file, source, args: (spec.args || []).map(String), env,
     types, stdin: stdinPipe && stdinPipe.sab, pythonPath: (spec.pythonPath || []).map(String),
-    pythonFiles: isNode ? [] : (spec.pythonFiles || []), snapshot, notes, ...where,
+    pythonFiles: isNode ? [] : (spec.pythonFiles || []), snapshot: warm ? null : snapshot, notes, ...where,
   });
   return proc;
 }

@@ -10,24 +10,35 @@ runtime's cdr.mjs. What works and what does not yet: docs/python.md of
 colcon-wasm.
 """
 
+from rclpy import _bus
 from rclpy import _event_loop
 from rclpy import _messages
 from rclpy import _native_only
 from rclpy import _threads
-from rclpy._bus import bus as _bus
 from rclpy.context import default_context
 from rclpy.executors import SingleThreadedExecutor
 
 __all__ = ['init', 'shutdown', 'try_shutdown', 'ok', 'spin', 'spin_once',
            'spin_until_future_complete', 'create_node', 'get_default_context']
 
-_messages.load_descriptions(_bus.types_json())
-_messages.install_finder()
-_native_only.install_finder()
-_threads.install_inline_pool()
-_event_loop.install_bus_event_loop()
-
 _executor = None
+
+
+def _attach_to_worker(functions):
+    """
+    Start rclpy on the worker's bus (the Python worker calls this before the script runs).
+
+    rclpy is imported into the host's Pyodide snapshot before a bus exists;
+    here it takes the bus functions (``functions``: the worker's
+    ``_colcon_wasm_bus``) and the install's type descriptions, and puts its
+    import finders, thread pool and event loop in place.
+    """
+    _bus.attach(functions)
+    _messages.load_descriptions(_bus.bus.types_json())
+    _messages.install_finder()
+    _native_only.install_finder()
+    _threads.install_inline_pool()
+    _event_loop.install_bus_event_loop()
 
 
 def get_default_context():
