@@ -86,8 +86,9 @@ export function match(bus, idx, touched) {
     touched.add(i32[ob + ENDPOINT.PID]);
     if (!c.ok) {
       for (const e of [wb, rb]) {
-        Atomics.add(i32, e + ENDPOINT.INCOMPAT_TOTAL, 1);
+        // The policy first: a waiter woken by the total reads the policy it names.
         Atomics.store(i32, e + ENDPOINT.INCOMPAT_POLICY, c.policy);
+        Atomics.add(i32, e + ENDPOINT.INCOMPAT_TOTAL, 1);
       }
       continue;
     }

@@ -99,7 +99,6 @@ export function eventStatus(c, ep, type, take) {
       case EventType.REQUESTED_QOS_INCOMPATIBLE:
       case EventType.OFFERED_QOS_INCOMPATIBLE:
         totalW = ENDPOINT.INCOMPAT_TOTAL; seenW = ENDPOINT.INCOMPAT_SEEN;
-        r.policy = Atomics.load(i32, b + ENDPOINT.INCOMPAT_POLICY);
         break;
       case EventType.MESSAGE_LOST:
         totalW = ENDPOINT.LOST_TOTAL; seenW = ENDPOINT.LOST_SEEN;
@@ -154,6 +153,9 @@ export function eventStatus(c, ep, type, take) {
         throw new BusError(Code.INVALID_ARGUMENT, `unknown event type ${type}`);
     }
     r.total = Atomics.load(i32, b + totalW);
+    // After the total: matching stores the policy before it counts, so a
+    // total that counts an incompatibility always comes with its policy.
+    if (totalW === ENDPOINT.INCOMPAT_TOTAL) r.policy = Atomics.load(i32, b + ENDPOINT.INCOMPAT_POLICY);
     r.change = r.total - i32[b + seenW];
     r.changed = r.change !== 0;
     if (take) i32[b + seenW] = r.total;
