@@ -20,9 +20,13 @@ limit is reached) the partly written record is cut off and a footer is
 written when there is room for it, so the file ends after its last whole
 chunk.
 
-Chunks come whole from the Node host (``write_chunk``, built in its tools
-worker) or are built here a message at a time (``write``); either way
-:class:`colcon_wasm.record.mcap_file.McapFile` puts them in the file.
+Chunks come whole from the Node host, which writes them into the file
+itself when they are not compressed (``host_writes``: this side writes the
+header, hands over the Schema and Channel records, indexes what the host
+reports, and writes the summary), or sends them to be compressed
+(``write_chunk``); or they are built here a message at a time (``write``).
+:class:`colcon_wasm.record.mcap_file.McapFile` keeps the file's records and
+indexes either way.
 """
 
 import errno
@@ -55,8 +59,36 @@ class _FileSink:
         # the end of the last write that reached the file whole (each write
         # is whole records)
         self.good = 0
+        # while the host writes the file: what is written here is kept for it
+        self.captured = None
+
+    def hand_over(self):
+        """Let the host write the file from here on (``write`` keeps the bytes for it)."""
+        self.captured = bytearray()
+
+    def take_captured(self):
+        """Return the bytes written since the last call, for the host to write."""
+        data = bytes(self.captured)
+        self.captured.clear()
+        return data
+
+    def take_back(self, good):
+        """
+        Write the file here again, after the host's last whole write.
+
+        :param good: where that write ends: anything after it (a chunk cut
+          off when the host died) is cut off
+        """
+        self.captured = None
+        self.position = self.good = good
+        os.ftruncate(self.fd, good)
+        os.lseek(self.fd, good, os.SEEK_SET)
 
     def write(self, *parts):
+        if self.captured is not None:
+            for data in parts:
+                self.captured += data
+            return sum(len(memoryview(data).cast('B')) for data in parts)
         total = 0
         for data in parts:
             view = memoryview(data).cast('B')
@@ -93,12 +125,16 @@ class BagWriter:
     """
 
     def __init__(self, path, schemas, *, compression='none', chunk_size=DEFAULT_CHUNK_SIZE,
-                 flush_interval=DEFAULT_FLUSH_INTERVAL):
+                 flush_interval=DEFAULT_FLUSH_INTERVAL, host_writes=False):
         """
         Create the file and write its header.
 
         :param schemas: :class:`colcon_wasm.ros2msg.Ros2MsgSchemas` of the install
         :param compression: ``none``, ``zstd`` or ``lz4``
+        :param host_writes: the Node host writes the data section (uncompressed
+          chunks) into the file through ``fileno()`` from ``host_offset`` on;
+          the Schema and Channel records of ``add_topic`` are then handed to
+          it (``records_for_host``), and ``host_wrote`` reports each write
         :raises BagError: when the file cannot be created
         """
         self.path = path
@@ -121,6 +157,54 @@ class BagWriter:
         self._file = self._guard(lambda: McapFile(
             self._sink, compression=compression, profile='ros2',
             library=f'colcon-wasm {__version__}'))
+        self._host = host_writes and compression == 'none' and not self.failed
+        self.host_offset = self._sink.tell()
+        # the end of the host's last whole write
+        self._host_good = self.host_offset
+        if self._host:
+            self._sink.hand_over()
+
+    def fileno(self):
+        """Return the file descriptor (the host writes through it when ``host_writes``)."""
+        return self._sink.fd
+
+    def records_for_host(self):
+        """Return the Schema and Channel records ``add_topic`` made since the last call."""
+        return self._sink.take_captured() if self._host else b''
+
+    def host_wrote(self, report):
+        """
+        Take note of a write of the host into the file (a WRITTEN frame).
+
+        :param report: ``{"kind": "records", "offset", "end"}`` or ``{"kind":
+          "chunk", "offset", "chunkLength", "indexLength", "size", "start",
+          "end", "messages", "channels"}`` (colcon_wasm/record/frames.py)
+        """
+        if not self._host or self.failed:
+            return
+        if report['kind'] != 'chunk':
+            self._host_good = report['end']
+            return
+        channels = [tuple(c) for c in report['channels']]
+        start, end = int(report['start']), int(report['end'])
+        self._file.note_chunk(report['offset'], report['chunkLength'], start, end, channels,
+                              report['indexLength'], report['size'])
+        for channel, count, _ in channels:
+            self._count(channel, count, start, end)
+        self._host_good = report['offset'] + report['chunkLength'] + report['indexLength']
+
+    def host_failed(self, report):
+        """
+        End the file after its last whole record: a write of the host failed (FAILED).
+
+        :param report: ``{"code": "ENOSPC", "message", "kept": bytes in the file or None}``
+        """
+        if not self._host or self.failed:
+            return
+        kept = report.get('kept')
+        self._sink.take_back(self._host_good if kept is None else kept)
+        number = getattr(errno, str(report.get('code')), errno.EIO)
+        self._fail(OSError(number, os.strerror(number)))
 
     def add_topic(self, topic, type_name, qos_profiles, channel=None):
         """
@@ -197,7 +281,8 @@ class BagWriter:
 
     def _count(self, channel, count, first, last):
         self.messages += count
-        self._topics[channel]['count'] += count
+        if channel in self._topics:
+            self._topics[channel]['count'] += count
         self._first = first if self._first is None else min(self._first, first)
         self._last = last if self._last is None else max(self._last, last)
 
@@ -211,6 +296,9 @@ class BagWriter:
 
     def close(self):
         """Write the rosbag2 metadata and the summary, and close the file."""
+        if self._host and self._sink.captured is not None:
+            # the host is done: on from its last whole write
+            self._guard(lambda: self._sink.take_back(self._host_good))
         self.flush()
         if not self.failed:
             self._guard(lambda: self._file.add_metadata(

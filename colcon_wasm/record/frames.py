@@ -11,13 +11,28 @@ side.
 Recording (host to launcher):
 
 - ``CHANNEL``: JSON ``{"id", "topic", "type", "qos": [profile, ...]}``, the
-  offered QoS of the topic's publishers in the JS form of qos.mjs;
+  offered QoS of the topic's publishers in the JS form of qos.mjs; the host
+  subscribes once the launcher answered ``READY``;
+- ``WRITTEN``: JSON, what the host's recording worker wrote into the bag
+  itself (chunks without compression, bridges/record/file_sink.mjs):
+  ``{"kind": "records", "offset", "end"}`` or ``{"kind": "chunk",
+  "offset", "chunkLength", "indexLength", "size", "start", "end" (ns, as
+  text), "messages", "channels": [[id, count, index length], ...]}``;
+- ``FAILED``: JSON ``{"code", "message", "kept"}``: a write of the host
+  failed (a full disk); the bag was cut back to ``kept`` bytes;
 - ``CHUNK``: ``u32 n``, ``n`` bytes of JSON ``{"records": R, "start",
   "end" (ns, as text), "messages", "channels": [[id, count, index length],
   ...]}``, then ``R`` bytes of the chunk's MCAP Message records, then its
-  MessageIndex records (built by the host's tools worker,
-  tools_process/chunk_recording.mjs);
+  MessageIndex records (built by the host's recording worker,
+  bridges/record/chunk_builder.mjs), for the launcher to compress;
 - ``NOTE``: JSON ``{"dropped": N}`` when the host dropped messages.
+
+Replies to recording (launcher to host, a pipe of their own):
+
+- ``READY``: ``u32 channel id``, then the Schema and Channel records the
+  host writes into the bag before the channel's first chunk (none when the
+  launcher writes the bag itself);
+- ``REFUSED``: JSON ``{"id", "reason"}``: the topic is not recorded.
 
 Playing (launcher to host):
 
@@ -36,17 +51,28 @@ MESSAGE = 2
 NOTE = 3
 END = 4
 CHUNK = 5
+READY = 6
+REFUSED = 7
+WRITTEN = 8
+FAILED = 9
 
 _HEAD = struct.Struct('<IB')
 _RECORDED = struct.Struct('<Idd')
 _META_LENGTH = struct.Struct('<I')
 _PLAYED = struct.Struct('<IIId')
+_CHANNEL_ID = struct.Struct('<I')
 
 
 def encode_json(kind, value):
     """Frame a JSON body."""
     body = json.dumps(value).encode('utf-8')
     return _HEAD.pack(len(body) + 1, kind) + body
+
+
+def encode_ready(channel, records):
+    """Frame the answer to a recorded CHANNEL: its records for the host to write (or none)."""
+    return _HEAD.pack(1 + _CHANNEL_ID.size + len(records), READY) + \
+        _CHANNEL_ID.pack(channel) + bytes(records)
 
 
 def encode_played(channel, log_time_ns, offset_ns, data):

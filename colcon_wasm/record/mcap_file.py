@@ -5,14 +5,16 @@
 An MCAP file written chunk by chunk, from chunks built elsewhere.
 
 The records of a chunk (Message records) and its MessageIndex records are
-built where the messages are: in the Node host's tools worker for
-``--record`` (packages/wasm_js/src/tools_process/chunk_recording.mjs), or
+built where the messages are: in the Node host's recording worker for
+``--record`` (packages/wasm_js/src/bridges/record/chunk_builder.mjs), or
 by :class:`ChunkBuffer` here for the recorders that get one message at a
 time (``colcon-wasm record``, the page's Record). This module puts them in
 a file: the Chunk record around the records (compressed with ``zstandard``
 or ``lz4``, with the CRC of the uncompressed records), the MessageIndex
 records after it, and the summary (schemas, channels, statistics, chunk
-indexes, metadata indexes, summary offsets) at the end.
+indexes, metadata indexes, summary offsets) at the end. Uncompressed
+chunks of ``--record`` are written by the recording worker itself, which
+reports where (:meth:`McapFile.note_chunk`).
 
 Every other record is encoded by Foxglove's ``mcap`` package
 (``mcap.records``). The Chunk record's head is packed here, so that a chunk
@@ -187,20 +189,39 @@ class McapFile:
                 + struct.pack('<Q', len(data)))
         chunk_start = self._sink.tell()
         self._sink.write(head, data)
-        index_start = self._sink.tell()
+        self._sink.write(indexes)
+        self._index_chunk(chunk_start, len(head) + len(data), start, end, channels,
+                          len(indexes), self._compression, len(data), size)
+
+    def note_chunk(self, offset, chunk_length, start, end, channels, index_length, size):
+        """
+        Index an uncompressed chunk written into the file by someone else.
+
+        The Node host's recording worker writes chunks into the bag itself
+        (packages/wasm_js/src/bridges/record/file_sink.mjs): the Chunk
+        record at ``offset`` (``chunk_length`` bytes), then its MessageIndex
+        records, one per channel in ``channels`` order.
+
+        :param channels: ``[(channel id, message count, index record length), ...]``
+        :param size: the length of its records
+        """
+        self._index_chunk(offset, chunk_length, start, end, channels, index_length, '', size,
+                          size)
+
+    def _index_chunk(self, chunk_start, chunk_length, start, end, channels, index_length,
+                     compression, compressed_size, size):
         offsets = {}
-        at = index_start
-        for channel, count, index_length in channels:
+        at = chunk_start + chunk_length
+        for channel, count, channel_index_length in channels:
             offsets[channel] = at
-            at += index_length
+            at += channel_index_length
             self._counts[channel] = self._counts.get(channel, 0) + count
             self._messages += count
-        self._sink.write(indexes)
         self._chunk_indexes.append(ChunkIndex(
             message_start_time=start, message_end_time=end, chunk_start_offset=chunk_start,
-            chunk_length=len(head) + len(data), message_index_offsets=offsets,
-            message_index_length=len(indexes), compression=self._compression,
-            compressed_size=len(data), uncompressed_size=size))
+            chunk_length=chunk_length, message_index_offsets=offsets,
+            message_index_length=index_length, compression=compression,
+            compressed_size=compressed_size, uncompressed_size=size))
         self._start = start if self._start is None else min(self._start, start)
         self._end = end if self._end is None else max(self._end, end)
 

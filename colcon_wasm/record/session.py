@@ -4,10 +4,15 @@
 """
 Record and replay beside a launch: the options, and the launcher's side.
 
-The launcher opens one pipe per direction for the Node host
-(``pass_fds``); a thread writes what the host records into the bag
-(:class:`colcon_wasm.record.bag_writer.BagWriter`), another streams the
-bag to play into the host (:mod:`colcon_wasm.record.bag_reader`). The host
+The launcher opens pipes for the Node host (``pass_fds``). To record, it
+creates the bag and writes its header, then the host's recording worker
+writes the chunks into it (its descriptor goes to the host too) and reports
+each write through a pipe; a thread here answers each topic the host finds
+with the Schema and Channel records to write first (a pipe back), indexes
+the chunks and writes the summary at the end
+(:class:`colcon_wasm.record.bag_writer.BagWriter`). Compressed bags get
+their chunks through the pipe and are written here. Another thread streams
+a bag to play into the host (:mod:`colcon_wasm.record.bag_reader`), which
 keeps the timing and publishes (packages/wasm_js/src/bridges/record/).
 """
 
@@ -141,17 +146,25 @@ class BagSession:
         if 'record' in self.plan:
             spec = self.plan['record']
             try:
+                # uncompressed chunks go into the file from the host's recording worker
                 writer = BagWriter(spec['path'], self.install_space.ros2msg_schemas(),
-                                   compression=spec['compression'])
+                                   compression=spec['compression'], host_writes=True)
             except (BagError, SchemaError) as e:
                 raise LaunchError(str(e)) from None
             read_end, write_end = os.pipe()
             _widen_pipe(read_end)
-            self.fds.append(write_end)
-            self._close_after_start.append(write_end)
-            self.host_plan['record'] = {'fd': write_end, 'topics': spec['topics']}
+            answers_read, answers_write = os.pipe()
+            self.fds += [write_end, answers_read]
+            self._close_after_start += [write_end, answers_read]
+            self.host_plan['record'] = {'fd': write_end, 'replies': answers_read,
+                                        'topics': spec['topics'], 'file': None}
+            if spec['compression'] == 'none':
+                self.fds.append(writer.fileno())
+                self.host_plan['record']['file'] = {'fd': writer.fileno(),
+                                                    'offset': writer.host_offset}
             # unbuffered: chunks are read straight into the frame buffer
-            self._thread(self._record, writer, os.fdopen(read_end, 'rb', buffering=0))
+            self._thread(self._record, writer, os.fdopen(read_end, 'rb', buffering=0),
+                         os.fdopen(answers_write, 'wb', buffering=0))
         if 'play' in self.plan:
             spec = self.plan['play']
             read_end, write_end = os.pipe()
@@ -182,23 +195,17 @@ class BagSession:
     def _say(self, level, text):
         print(f'[{level}] [rosbag2]: {text}', file=self.err, flush=True)
 
-    def _record(self, writer, stream):
-        channels = {}
+    def _record(self, writer, stream, answers):
         dropped = 0
         try:
             # the chunk is written before the next frame is read: one buffer for all
             for kind, body in frames.read_frames(stream):
                 if kind == frames.CHANNEL:
-                    c = json.loads(bytes(body))
-                    try:
-                        channels[c['id']] = writer.add_topic(c['topic'], c['type'], c['qos'],
-                                                             channel=c['id'])
-                    except SchemaError as e:
-                        channels[c['id']] = None
-                        self._say('WARNING', f"not recording topic '{c['topic']}': {e}")
-                        continue
-                    if channels[c['id']] is not None:
-                        self._say('INFO', f"recording topic '{c['topic']}' ({c['type']})")
+                    self._answer(writer, json.loads(bytes(body)), answers)
+                elif kind == frames.WRITTEN:
+                    writer.host_wrote(json.loads(bytes(body)))
+                elif kind == frames.FAILED:
+                    writer.host_failed(json.loads(bytes(body)))
                 elif kind == frames.CHUNK:
                     writer.write_chunk(*frames.decode_chunk(body))
                 elif kind == frames.NOTE:
@@ -208,6 +215,8 @@ class BagSession:
                     self._say('ERROR', writer.failed)
         finally:
             stream.close()
+            with contextlib.suppress(OSError):
+                answers.close()
             writer.close()
             if writer.failed and not self.failed:
                 self.failed = True
@@ -216,6 +225,24 @@ class BagSession:
                 lost = f' ({dropped} dropped: the disk did not keep up)' if dropped else ''
                 self._say('INFO',
                           f"recorded {writer.messages} messages into '{writer.path}'{lost}")
+
+    def _answer(self, writer, c, answers):
+        """Add a topic the host found; tell the host to record it (with its records) or not."""
+        reason = None
+        try:
+            channel = writer.add_topic(c['topic'], c['type'], c['qos'], channel=c['id'])
+            if channel is None:
+                reason = writer.failed or 'the bag failed'
+        except SchemaError as e:
+            reason = str(e)
+            self._say('WARNING', f"not recording topic '{c['topic']}': {e}")
+        if reason is None:
+            self._say('INFO', f"recording topic '{c['topic']}' ({c['type']})")
+            answer = frames.encode_ready(c['id'], writer.records_for_host())
+        else:
+            answer = frames.encode_json(frames.REFUSED, {'id': c['id'], 'reason': reason})
+        with contextlib.suppress(BrokenPipeError, OSError):
+            answers.write(answer)
 
     def _play(self, spec, stream):
         schemas = self.install_space.ros2msg_schemas()

@@ -62,11 +62,6 @@ export const FromTools = Object.freeze({
   BATCH: 'batch',
   /** {type, service, requests: [{data: Uint8Array, id: {gid, seqLo, seqHi}, info}]} for serve() */
   REQUESTS: 'requests',
-  /**
-   * {type, recording, records: ArrayBuffer, length, indexes: ArrayBuffer, channels: [[id, count, indexLength]],
-   *  start, end (BigInt ns), messages}: a closed chunk of a recording (tools_process/chunk_recording.mjs)
-   */
-  CHUNK: 'chunk',
 });
 
 /**

@@ -51,8 +51,6 @@ export class Tools {
     this._next = 1;
     this._pending = new Map();
     this._subscribers = new Map();
-    /** recording id -> onChunk */
-    this._recordings = new Map();
     this._defaultNodes = new Map();
     worker.on('message', (m) => this._onMessage(m));
     worker.on('error', (e) => this._failAll(new BusError(1, `the tools worker failed: ${e.message}`)));
@@ -65,15 +63,6 @@ export class Tools {
       this._pending.delete(m.id);
       if (m.ok) p.resolve(m.value);
       else p.reject(toError(m.error));
-    } else if (m.type === FromTools.CHUNK) {
-      const cb = this._recordings.get(m.recording);
-      if (cb) {
-        try {
-          cb(m);
-        } catch (e) {
-          console.error('tools recording callback threw:', e);
-        }
-      }
     } else if (m.type === FromTools.BATCH || m.type === FromTools.REQUESTS) {
       const batch = m.type === FromTools.BATCH;
       const cb = this._subscribers.get(batch ? m.subscription : m.service);
@@ -135,37 +124,6 @@ export class Tools {
       close: async () => {
         this._subscribers.delete(id);
         await this._call('destroy', [id]);
-      },
-    };
-  }
-
-  /**
-   * Record topics into MCAP chunks built in the tools worker
-   * (tools_process/chunk_recording.mjs): `onChunk(chunk)` receives each closed
-   * chunk ({records: ArrayBuffer, length, indexes: ArrayBuffer, channels, start,
-   * end, messages}); give its `records` buffer back with `recycle` once written.
-   * @param {{chunkBytes: number, flushMs: number}} options
-   * @param {function(object): void} onChunk
-   * @returns {Promise<{id: number, add: function(object, number): Promise<number>,
-   *   recycle: function(ArrayBuffer): void, close: function(): Promise<void>}>}
-   */
-  async startRecording(options, onChunk) {
-    const id = await this._call('startRecording', [options]);
-    this._recordings.set(id, onChunk);
-    return {
-      id,
-      /** Subscribe to spec {topic, type, qos, node} as MCAP channel `channel`. */
-      add: async (spec, channel) => {
-        const node = await this._node(spec);
-        return this._call('recordTopic', [id, { node, name: spec.topic, type: spec.type, qos: spec.qos }, channel]);
-      },
-      recycle: (buffer) => {
-        this._call('recycleChunk', [id, buffer], ToTools.CALL, [buffer]).catch(() => {});
-      },
-      /** Take what is waiting, post the last chunk, unsubscribe. */
-      close: async () => {
-        await this._call('stopRecording', [id]);
-        this._recordings.delete(id);
       },
     };
   }

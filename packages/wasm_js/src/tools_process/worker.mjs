@@ -11,7 +11,6 @@
 
 import { BusClient, KIND_CLIENT, KIND_PUBLISHER, KIND_SERVICE, KIND_SUBSCRIPTION, TakeMode } from '../bus_client.mjs';
 import { FromTools, ToTools } from '../protocol.mjs';
-import { ChunkRecording } from './chunk_recording.mjs';
 
 let client = null;
 const subscriptions = new Set();
@@ -22,16 +21,6 @@ const publishers = new Map();
 const clientByKey = new Map();
 /** client endpoint -> Map(sequence number -> pending call) */
 const clients = new Map();
-/** recording id -> ChunkRecording (the chunks of `--record`) */
-const recordings = new Map();
-let nextRecording = 1;
-/**
- * While the worker serves recordings only, a wake-up is followed by this
- * much sleep before the next: a recorder needs no low latency (its QoS keeps
- * up to 1000 messages), and a 1 kHz topic then wakes it 200 times a second,
- * not 1000. With any other subscription, server or call, it wakes at once.
- */
-const RECORDING_ONLY_WAKE_MS = 5;
 let armed = false;
 let drainQueued = false;
 /**
@@ -76,7 +65,6 @@ function infoOf(c) {
 }
 
 function drain() {
-  for (const r of recordings.values()) r.drain();
   for (const ep of subscriptions) {
     const messages = [];
     const transfer = [];
@@ -128,18 +116,10 @@ function arm() {
   const wake = () => {
     client.unregister();
     armed = false;
-    if (recordingOnly()) setTimeout(arm, RECORDING_ONLY_WAKE_MS);
-    else arm();
+    arm();
   };
   if (r.async) r.value.then(wake);
   else Promise.resolve().then(wake);
-}
-
-/** True when recordings are all this worker waits for. */
-function recordingOnly() {
-  if (!recordings.size || subscriptions.size || servers.size) return false;
-  for (const pending of clients.values()) if (pending.size) return false;
-  return true;
 }
 
 function endpoint(spec, kind) {
@@ -168,13 +148,13 @@ const methods = {
   },
   publish(ep, data) {
     const seq = client.publish(ep, data, 10000);
-    if (subscriptions.size || recordings.size) drainSoon();
+    if (subscriptions.size) drainSoon();
     return seq;
   },
   publishMany(ep, list) {
     let seq = 0;
     for (const data of list) seq = client.publish(ep, data, 10000);
-    if (subscriptions.size || recordings.size) drainSoon();
+    if (subscriptions.size) drainSoon();
     return seq;
   },
   publishOnce(spec, data) {
@@ -185,7 +165,7 @@ const methods = {
       publishers.set(key, ep);
     }
     const seq = client.publish(ep, data, 10000);
-    if (subscriptions.size || recordings.size) drainSoon();
+    if (subscriptions.size) drainSoon();
     return seq;
   },
   call(spec, request, timeoutMs) {
@@ -215,34 +195,6 @@ const methods = {
   },
   respond(ep, id, data, timeoutMs) {
     return client.sendResponse(ep, id.gid, id.seqLo, id.seqHi, data, timeoutMs);
-  },
-  startRecording(options) {
-    const id = nextRecording++;
-    recordings.set(id, new ChunkRecording(client, {
-      id, chunkBytes: options.chunkBytes, flushMs: options.flushMs,
-      post: (chunk, transfer) => post({ type: FromTools.CHUNK, ...chunk }, transfer),
-    }));
-    return id;
-  },
-  recordTopic(id, spec, channel) {
-    const r = recordings.get(id);
-    if (!r) throw new Error(`no recording ${id} in the tools worker (it was stopped)`);
-    const ep = endpoint(spec, KIND_SUBSCRIPTION);
-    r.add(ep, channel);
-    Promise.resolve().then(drain);
-    return ep;
-  },
-  recycleChunk(id, buffer) {
-    const r = recordings.get(id);
-    if (r) r.recycle(buffer);
-  },
-  stopRecording(id) {
-    const r = recordings.get(id);
-    if (!r) return;
-    r.drain();
-    r.flush();
-    for (const ep of r.channels.keys()) client.destroyEndpoint(ep);
-    recordings.delete(id);
   },
   destroy(ep) {
     subscriptions.delete(ep);

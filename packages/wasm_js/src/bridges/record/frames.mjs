@@ -9,7 +9,9 @@
  * @module bridges/record/frames
  */
 
-export const Kind = Object.freeze({ CHANNEL: 1, MESSAGE: 2, NOTE: 3, END: 4, CHUNK: 5 });
+export const Kind = Object.freeze({
+  CHANNEL: 1, MESSAGE: 2, NOTE: 3, END: 4, CHUNK: 5, READY: 6, REFUSED: 7, WRITTEN: 8, FAILED: 9,
+});
 
 const encoder = new TextEncoder();
 const decoder = new TextDecoder();
@@ -49,7 +51,8 @@ export function chunkHead(chunk, bodyBytes) {
 /**
  * Cuts a byte stream into frames: `push(chunk)` returns the whole frames
  * received so far as {kind, json} or, for messages to play,
- * {kind, channel, sec, nanosec, offsetNs, data}.
+ * {kind, channel, sec, nanosec, offsetNs, data}, or for a recorded
+ * channel's answer {kind: READY, channel, records}.
  */
 export class FrameReader {
   constructor() {
@@ -77,6 +80,9 @@ export class FrameReader {
           offsetNs: body.readDoubleLE(12),
           data: new Uint8Array(body.subarray(20)), // a copy: the buffer is reused
         });
+      } else if (kind === Kind.READY) {
+        // a copy: the buffer is reused
+        frames.push({ kind, channel: body.readUInt32LE(0), records: new Uint8Array(body.subarray(4)) });
       } else {
         frames.push({ kind, json: JSON.parse(decoder.decode(body)) });
       }

@@ -3,9 +3,10 @@
 
 /**
  * Record and replay in `colcon-wasm run|launch|play` (launch/run_plan.mjs):
- * `plan.record` ({fd, topics}) and `plan.play` ({fd, rate, clock,
- * stop_after}), the Node.js side's ends of the launcher's pipes
- * (colcon_wasm/record/session.py).
+ * `plan.record` ({fd, replies, file: {fd, offset} or null, topics}) and
+ * `plan.play` ({fd, rate, clock, stop_after}), the Node.js side's ends of the
+ * launcher's pipes and, when the recording worker writes the bag itself, the
+ * bag's descriptor (colcon_wasm/record/session.py).
  *
  * @module bridges/record/launch
  */
@@ -24,17 +25,23 @@ export async function startBags(plan, runtime, { out, err }) {
     const tag = { info: 'INFO', warning: 'WARNING', error: 'ERROR' }[level] || 'INFO';
     (level === 'info' ? out : err)(`[${tag}] [rosbag2]: ${text}`);
   };
-  const tools = await runtime.tools();
   let recorder = null;
   let player = null;
   if (plan.record) {
     const { Recorder } = await import('./recorder.mjs');
     const sink = createWriteStream(null, { fd: plan.record.fd, highWaterMark: 1 << 20 });
-    recorder = new Recorder({ runtime, tools, sink, topics: plan.record.topics, log });
+    const replies = createReadStream(null, { fd: plan.record.replies });
+    // past a file size limit (ulimit -f) a write fails with EFBIG, which the
+    // recorder reports, rather than the signal ending the host and its nodes
+    if (plan.record.file) process.on('SIGXFSZ', () => {});
+    recorder = new Recorder({
+      runtime, sink, replies, file: plan.record.file || null, topics: plan.record.topics, log,
+    });
     await recorder.start();
   }
   let play = null;
   if (plan.play) {
+    const tools = await runtime.tools();
     const { Player } = await import('./player.mjs');
     const source = createReadStream(null, { fd: plan.play.fd, highWaterMark: 1 << 20 });
     // the first message waits (3 s at most) for the launched nodes' subscriptions and
@@ -43,7 +50,8 @@ export async function startBags(plan, runtime, { out, err }) {
     const ready = (graph, name) => {
       const t = graph.topics.find((x) => x.name === name && x.domain === 0);
       const subscriptions = t ? t.subscriptions : [];
-      return (!nodes || subscriptions.some((e) => e.pid !== tools.pid))
+      const ours = (e) => e.pid === tools.pid || (recorder && e.pid === recorder.process.pid);
+      return (!nodes || subscriptions.some((e) => !ours(e)))
         && (!recorder || !recorder.wants(name) || recorder.subscribed.has(name));
     };
     player = new Player({

@@ -2,22 +2,29 @@
 // Licensed under the Apache License, Version 2.0
 
 /**
- * The recording side of `--record` in the Node.js launcher: one tools subscription
- * per topic with a publisher (or per `--record-topic`), subscribed as soon
- * as the topic shows up in the graph, with the QoS that matches its
- * publishers (as `ros2 bag record` adapts). The tools worker copies every
- * message, as the bus delivered it (raw CDR, no decode), into the records of
- * an MCAP chunk (tools_process/chunk_recording.mjs); each closed chunk goes
- * to the launcher's pipe (./frames.mjs) in one write, and the launcher puts
- * it into the MCAP file.
+ * The recording side of `--record` in the Node.js launcher: one subscription
+ * per topic with a publisher (or per `--record-topic`), made as soon as the
+ * topic shows up in the graph, with the QoS that matches its publishers (as
+ * `ros2 bag record` adapts).
+ *
+ * The subscriptions belong to the recording worker (./recording_process.mjs),
+ * which copies every message as the bus delivered it (raw CDR, no decode)
+ * into the records of an MCAP chunk and writes each closed chunk into the
+ * bag itself; when the launcher compresses chunks, they go to it through
+ * the pipe instead. Each new topic is first announced to the launcher
+ * (CHANNEL), which answers with the Schema and Channel records to write
+ * before it (READY) or says why the topic is not recorded (REFUSED); the
+ * launcher learns of every write (WRITTEN) for the bag's summary
+ * (colcon_wasm/record/session.py).
  *
  * @module bridges/record/recorder
  */
 
 import { subscriptionQos } from '../../page/graph.mjs';
-import { chunkHead, jsonFrame, Kind } from './frames.mjs';
+import { chunkHead, FrameReader, jsonFrame, Kind } from './frames.mjs';
+import { RecordingProcess } from './recording_process.mjs';
 
-/** Bytes waiting for the pipe beyond which messages are dropped (and counted). */
+/** Bytes waiting for the pipe beyond which chunks are dropped (and counted). */
 const MAX_QUEUED_BYTES = 256 * 1024 * 1024;
 /** History of the recorder's subscriptions: bursts between two wake-ups are kept. */
 const DEPTH = 1000;
@@ -30,22 +37,26 @@ export class Recorder {
   /**
    * @param {object} options
    * @param {import('../../runtime.mjs').Runtime} options.runtime
-   * @param {import('../../tools_process/main_thread.mjs').Tools} options.tools
    * @param {import('node:stream').Writable} options.sink the pipe to the launcher
+   * @param {import('node:stream').Readable} options.replies the launcher's answers
+   * @param {?{fd: number, offset: number}} options.file the bag, when the worker writes it
    * @param {?string[]} options.topics only these topics (null: all)
    * @param {function(string, string): void} options.log (level, text)
    */
-  constructor({ runtime, tools, sink, topics, log }) {
+  constructor({ runtime, sink, replies, file, topics, log }) {
     this.runtime = runtime;
-    this.tools = tools;
     this.sink = sink;
+    this.replies = replies;
+    this.file = file;
     this.topics = topics && topics.length ? new Set(topics) : null;
     this.log = log;
     this.channels = new Map();
     /** topics whose subscription is in place */
     this.subscribed = new Set();
     this.subscriptions = [];
-    this.recording = null;
+    /** channel id -> {resolve, reject}: the launcher's answer to a CHANNEL */
+    this.answers = new Map();
+    this.process = null;
     this.dropped = 0;
     this.closed = false;
     this.broken = false;
@@ -56,11 +67,36 @@ export class Recorder {
   }
 
   async start() {
-    this.node = await this.tools.createNode('rosbag2_recorder', { namespace: '/' });
-    this.recording = await this.tools.startRecording({ chunkBytes: CHUNK_BYTES, flushMs: FLUSH_MS },
-      (chunk) => this._chunk(chunk));
+    this._readAnswers();
+    this.process = await RecordingProcess.start(this.runtime, {
+      fd: this.file ? this.file.fd : null, offset: this.file ? this.file.offset : 0,
+      chunkBytes: CHUNK_BYTES, flushMs: FLUSH_MS, onReport: (r) => this._report(r),
+    });
+    this.node = await this.process.node('rosbag2_recorder');
     this.runtime.onGraphChange(() => this._scan());
     this._scan();
+  }
+
+  _readAnswers() {
+    const reader = new FrameReader();
+    const settle = (id, fn) => {
+      const a = this.answers.get(id);
+      if (!a) return;
+      this.answers.delete(id);
+      fn(a);
+    };
+    this.replies.on('data', (data) => {
+      for (const f of reader.push(data)) {
+        if (f.kind === Kind.READY) settle(f.channel, (a) => a.resolve(f.records));
+        else if (f.kind === Kind.REFUSED) settle(f.json.id, (a) => a.reject(Object.assign(new Error(f.json.reason), { refused: true })));
+      }
+    });
+    const gone = () => {
+      for (const a of this.answers.values()) a.reject(new Error('the launcher stopped answering'));
+      this.answers.clear();
+    };
+    this.replies.on('end', gone);
+    this.replies.on('error', gone);
   }
 
   _scan() {
@@ -73,15 +109,20 @@ export class Recorder {
       const id = this.channels.size + 1;
       const offered = t.publishers.map((e) => e.qos).filter(Boolean);
       this.channels.set(t.name, id);
+      const answered = new Promise((resolve, reject) => this.answers.set(id, { resolve, reject }));
       this._send(jsonFrame(Kind.CHANNEL, { id, topic: t.name, type, qos: offered }));
       const qos = subscriptionQos(offered, DEPTH);
-      this.subscriptions.push(this.recording.add({ topic: t.name, type, qos, node: this.node }, id).then((ep) => {
-        this.subscribed.add(t.name);
-        return ep;
-      }).catch((e) => {
-        this.log('error', `cannot record '${t.name}': ${e.message}`);
-        return null;
-      }));
+      this.subscriptions.push(answered
+        .then((records) => this.process.add({ node: this.node, topic: t.name, type, qos, channel: id, records }))
+        .then((ep) => {
+          this.subscribed.add(t.name);
+          return ep;
+        })
+        .catch((e) => {
+          // a refusal was said by the launcher, with its reason
+          if (!e.refused && !this.closed) this.log('error', `cannot record '${t.name}': ${e.message}`);
+          return null;
+        }));
     }
   }
 
@@ -90,49 +131,59 @@ export class Recorder {
     return !this.topics || this.topics.has(topic);
   }
 
-  /** Write frames to the pipe; `messages` > 0: they are messages, dropped (and counted) past the bound. */
-  _send(frame, messages = 0) {
-    if (this.broken) return;
-    if (messages && this.sink.writableLength > MAX_QUEUED_BYTES) {
-      this.dropped += messages;
-      return;
-    }
-    this.sink.write(frame);
+  /** What the recording worker says: its writes, a failed write, or a chunk for the pipe. */
+  _report(r) {
+    if (r.type === 'chunk') this._chunk(r);
+    else if (r.type === 'written') this._send(jsonFrame(Kind.WRITTEN, strip(r)));
+    else if (r.type === 'failed') this._send(jsonFrame(Kind.FAILED, strip(r)));
+  }
+
+  /** Write frames to the pipe (nothing once it broke). */
+  _send(frame) {
+    if (!this.broken) this.sink.write(frame);
   }
 
   /**
-   * Write a chunk of the tools worker to the pipe in one go (its head, the
-   * records, the message indexes; nothing copied); past the bound it is
-   * dropped and its messages counted. Its buffer goes back to the worker once written.
+   * Write a chunk of the recording worker to the pipe in one go (its head,
+   * the records, the message indexes; nothing copied); past the bound it is
+   * dropped and its messages counted. Its buffer goes back to the worker
+   * once written.
    */
   _chunk(chunk) {
     const records = new Uint8Array(chunk.records, 0, chunk.length);
     const indexes = new Uint8Array(chunk.indexes);
     if (this.broken || this.sink.writableLength > MAX_QUEUED_BYTES) {
       if (!this.broken) this.dropped += chunk.messages;
-      this.recording.recycle(chunk.records);
+      this.process.recycle(chunk.records);
       return;
     }
     this.sink.cork();
     this.sink.write(chunkHead(chunk, records.length + indexes.length));
     this.sink.write(records);
-    this.sink.write(indexes, () => this.recording.recycle(chunk.records));
+    this.sink.write(indexes, () => this.process.recycle(chunk.records));
     process.nextTick(() => this.sink.uncork());
   }
 
-  /** Stop recording: unsubscribe, let what is queued reach the launcher, end the pipe. */
+  /** Stop recording: what is waiting on the bus goes into the last chunk, then the pipe ends. */
   async close() {
     if (this.closed) return;
     this.closed = true;
-    // the subscriptions in the making first, then what is waiting on the bus goes into
-    // the last chunk, which reaches this side before close() returns
+    // the subscriptions in the making first; the worker's last reports come
+    // before its answer to stop
     await Promise.all(this.subscriptions);
-    if (this.recording) await this.recording.close().catch((e) => this.log('error', `closing the recording: ${e.message}`));
+    if (this.process) await this.process.stop();
     if (this.dropped) {
       this.log('warning', `${this.dropped} messages were dropped: the launcher did not keep up with writing them`);
       this._send(jsonFrame(Kind.NOTE, { dropped: this.dropped }));
     }
+    this.replies.destroy();
     if (this.broken) return;
     await new Promise((resolve) => this.sink.end(resolve));
   }
+}
+
+/** A report without its `type` (the frame's kind says it). */
+function strip(report) {
+  const { type, ...rest } = report;
+  return rest;
 }

@@ -2,29 +2,34 @@
 // Licensed under the Apache License, Version 2.0
 
 /**
- * Drive the tools worker's chunk builder (tools_process/chunk_recording.mjs)
- * on a real bus, for tests/test_chunk_recording.py:
+ * Drive the recording worker's chunk builder (bridges/record/chunk_builder.mjs)
+ * on a real bus, for tests/test_chunk_builder.py:
  *
- *   node chunk_recording_check.mjs WASM_JS_SRC_DIR OUT_FILE
+ *   node chunk_builder_check.mjs WASM_JS_SRC_DIR pipe OUT_FILE
+ *   node chunk_builder_check.mjs WASM_JS_SRC_DIR file FD OFFSET RECORDS_FILE
  *
  * A publisher process sends, on two topics, small messages and frames of
- * 900 KiB; a recorder process records both into chunks of 1 MiB. Every
- * closed chunk is written to OUT_FILE as the recorder's pipe frames carry
- * it (bridges/record/frames.mjs), and a JSON line on stdout lists what was
- * published (topic channel, length, first byte, bus time) for the test to
- * compare with what the MCAP readers find.
+ * 900 KiB; a recorder process records both into chunks of 1 MiB. `pipe`:
+ * every closed chunk is written to OUT_FILE as the recorder's pipe frames
+ * carry it (bridges/record/frames.mjs). `file`: the bag's descriptor FD
+ * (inherited, the launcher's BagWriter wrote its header up to OFFSET) gets
+ * the launcher's Schema/Channel records (RECORDS_FILE) and then every chunk
+ * through bridges/record/file_sink.mjs, as the recording worker writes it.
+ * A JSON line on stdout lists what was published (topic channel, length,
+ * first byte), the messages per chunk and, in file mode, the write reports.
  */
 
-import { writeFileSync } from 'node:fs';
+import { readFileSync, writeFileSync } from 'node:fs';
 import path from 'node:path';
 import { pathToFileURL } from 'node:url';
 
-const [srcDir, outFile] = process.argv.slice(2);
+const [srcDir, mode, ...rest] = process.argv.slice(2);
 const src = (file) => pathToFileURL(path.join(path.resolve(srcDir), file)).href;
 const { Bus, KIND_PUBLISHER, KIND_SUBSCRIPTION } = await import(src('bus.mjs'));
 const { BusClient } = await import(src('bus_client.mjs'));
 const { PROC_KIND_NODE, PROC_KIND_RUNTIME } = await import(src('layout.mjs'));
-const { ChunkRecording } = await import(src('tools_process/chunk_recording.mjs'));
+const { ChunkBuilder } = await import(src('bridges/record/chunk_builder.mjs'));
+const { FileSink } = await import(src('bridges/record/file_sink.mjs'));
 const { chunkHead } = await import(src('bridges/record/frames.mjs'));
 
 const bus = Bus.create({ initialBytes: 8 << 20, maxBytes: 256 << 20, maxMessageBytes: 16 << 20 });
@@ -40,14 +45,21 @@ const endpoint = (c, kind, node, name) => c.createEndpoint({
 
 const frames = [];
 const chunks = [];
-const recording = new ChunkRecording(recorder, {
-  id: 1, chunkBytes: 1 << 20, flushMs: 60000,
-  post: (chunk) => {
+const reports = [];
+let sink = null;
+if (mode === 'file') {
+  const [fd, offset, recordsFile] = rest;
+  sink = new FileSink({ fd: Number(fd), offset: Number(offset), onWritten: (r) => reports.push(r) });
+  sink.writeRecords(new Uint8Array(readFileSync(recordsFile)));
+}
+const recording = new ChunkBuilder(recorder, {
+  chunkBytes: 1 << 20, flushMs: 60000,
+  sink: (chunk) => {
     chunks.push(chunk.messages);
-    const records = new Uint8Array(chunk.records, 0, chunk.length);
-    const indexes = new Uint8Array(chunk.indexes);
-    frames.push(chunkHead(chunk, records.length + indexes.length), records.slice(), indexes);
-    recording.recycle(chunk.records);
+    if (sink) return sink.chunk(chunk);
+    frames.push(chunkHead({ ...chunk, length: chunk.records.length }, chunk.records.length + chunk.indexes.length),
+      chunk.records.slice(), chunk.indexes);
+    return true;
   },
 });
 const recNode = recorder.createNode({ name: 'rosbag2_recorder' }).index;
@@ -75,13 +87,15 @@ for (let round = 0; round < 6; round++) {
 }
 recording.drain();
 recording.flush();
-let size = 0;
-for (const f of frames) size += f.length;
-const out = new Uint8Array(size);
-let at = 0;
-for (const f of frames) {
-  out.set(f, at);
-  at += f.length;
+if (mode === 'pipe') {
+  let size = 0;
+  for (const f of frames) size += f.length;
+  const out = new Uint8Array(size);
+  let at = 0;
+  for (const f of frames) {
+    out.set(f, at);
+    at += f.length;
+  }
+  writeFileSync(rest[0], out);
 }
-writeFileSync(outFile, out);
-console.log(JSON.stringify({ published, chunks }));
+console.log(JSON.stringify({ published, chunks, reports }));

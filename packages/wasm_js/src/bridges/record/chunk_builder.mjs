@@ -2,54 +2,70 @@
 // Licensed under the Apache License, Version 2.0
 
 /**
- * A recording inside the tools worker: the messages of its subscriptions
- * are copied from the bus straight into the MCAP Message records of one
- * open chunk, with the chunk's message indexes beside them. A chunk goes to
- * the main thread (its buffer transferred, not copied) when it is full or
- * `flushMs` after its first message, so the recorder's writer gets one
- * buffer per chunk instead of one message at a time.
+ * MCAP chunks built where the bytes are: the messages of a recording's
+ * subscriptions are copied from the bus straight into the Message records
+ * of one open chunk, with the chunk's message indexes beside them. A chunk
+ * is closed when it is full or `flushMs` after its first message, and
+ * handed to a sink (bridges/record/chunk_sinks.mjs): the bag file itself
+ * (`--record`, no compression) or the launcher's pipe (compressed bags).
  *
- * This is the part of the MCAP layout built where the bytes are: the
- * records of the chunk's content (Message, opcode 0x05) and the chunk's
- * MessageIndex records (0x07), little endian as the MCAP specification
- * gives them. The Chunk record around them, the schemas, channels and the
- * summary are written by the launcher (colcon_wasm/record/mcap_file.py).
+ * This is the part of the MCAP layout built per message: the records of a
+ * chunk's content (Message, opcode 0x05) and its MessageIndex records
+ * (0x07), little endian as the MCAP specification gives them. The Chunk
+ * record around them is the sink's; schemas, channels and the summary are
+ * the launcher's (colcon_wasm/record/mcap_file.py).
  *
- * @module tools_process/chunk_recording
+ * @module bridges/record/chunk_builder
  */
 
-import { TakeMode } from '../bus_client.mjs';
+import { TakeMode } from '../../bus_client.mjs';
 
 const OP_MESSAGE = 0x05;
 const OP_MESSAGE_INDEX = 0x07;
 /** opcode, record length, channel id, sequence, log time, publish time */
 const MESSAGE_HEAD = 1 + 8 + 2 + 4 + 8 + 8;
+/** A sink keeps at most this many spare chunk buffers. */
+const SPARE_BUFFERS = 4;
 
 /** Nanoseconds since the epoch (BigInt) of a bus time in milliseconds since the epoch. */
 function nanoseconds(ms) {
   return BigInt(Math.round(ms * 1e6));
 }
 
-export class ChunkRecording {
+/**
+ * A closed chunk, as the sinks get it.
+ * @typedef {object} ClosedChunk
+ * @property {Uint8Array} records its Message records (a view of the chunk buffer)
+ * @property {Uint8Array} indexes its MessageIndex records, one per channel
+ * @property {number[][]} channels [channel id, message count, index record length] per channel
+ * @property {bigint} start earliest log time (ns)
+ * @property {bigint} end latest log time (ns)
+ * @property {number} messages how many
+ */
+
+export class ChunkBuilder {
   /**
-   * @param {import('../bus_client.mjs').BusClient} client the tools worker's bus client
+   * @param {import('../../bus_client.mjs').BusClient} client the recording process' bus client
    * @param {object} options
-   * @param {number} options.id the recording's id (in the chunks posted)
    * @param {number} options.chunkBytes a chunk is closed once its records reach this size
    * @param {number} options.flushMs and at the latest this long after its first message
-   * @param {function(object, ArrayBuffer[]): void} options.post sends a chunk to the main thread
+   * @param {function(ClosedChunk): boolean} options.sink takes a closed chunk; returns true
+   *   when it is done with the chunk's buffer (which is then reused), false when it gives it
+   *   back later with `recycle`
+   * @param {function(): number} [options.now] a clock in ms (for `flushDue`)
    */
-  constructor(client, { id, chunkBytes, flushMs, post }) {
+  constructor(client, { chunkBytes, flushMs, sink, now = () => performance.now() }) {
     this.client = client;
-    this.id = id;
     this.chunkBytes = chunkBytes;
     this.flushMs = flushMs;
-    this.post = post;
+    this.sink = sink;
+    this.now = now;
     /** subscription endpoint -> MCAP channel id */
     this.channels = new Map();
-    /** buffers the main thread gave back, for the next chunks */
+    /** buffers given back, for the next chunks */
     this.spare = [];
-    this.timer = null;
+    /** when the open chunk must be closed (ms of `now`), Infinity while it is empty */
+    this.deadline = Infinity;
     this._open(chunkBytes);
   }
 
@@ -63,14 +79,21 @@ export class ChunkRecording {
     this.channels.delete(ep);
   }
 
-  /** Take a returned buffer back for later chunks. */
+  /** Take a chunk buffer back for later chunks. */
   recycle(buffer) {
-    if (buffer.byteLength >= this.chunkBytes && this.spare.length < 4) this.spare.push(new Uint8Array(buffer));
+    if (buffer.byteLength >= this.chunkBytes && this.spare.length < SPARE_BUFFERS) {
+      this.spare.push(buffer instanceof Uint8Array ? buffer : new Uint8Array(buffer));
+    }
   }
 
-  /** Copy every message waiting for the recording's subscriptions into the open chunk. */
+  /**
+   * Copy every message waiting for the recording's subscriptions into the
+   * open chunk, closing chunks as they fill up.
+   * @returns {number} how many messages were copied
+   */
   drain() {
     const c = this.client;
+    let copied = 0;
     for (const [ep, channel] of this.channels) {
       for (;;) {
         const len = c.takeBegin(ep, TakeMode.MESSAGE);
@@ -94,17 +117,22 @@ export class ChunkRecording {
         index.push(logTime, BigInt(at));
         if (this.start === null || logTime < this.start) this.start = logTime;
         if (this.end === null || logTime > this.end) this.end = logTime;
-        this.count++;
-        if (this.count === 1) this.timer = setTimeout(() => this.flush(), this.flushMs);
+        if (this.count++ === 0) this.deadline = this.now() + this.flushMs;
+        copied++;
       }
     }
     if (this.used >= this.chunkBytes) this.flush();
+    return copied;
   }
 
-  /** Post the open chunk (when it holds a message) and open the next one. */
+  /** True when the open chunk holds messages and its time is up. */
+  flushDue() {
+    return this.count > 0 && this.now() >= this.deadline;
+  }
+
+  /** Hand the open chunk (when it holds a message) to the sink and open the next one. */
   flush() {
-    if (this.timer) clearTimeout(this.timer);
-    this.timer = null;
+    this.deadline = Infinity;
     if (this.count === 0) return;
     const channels = [];
     let indexBytes = 0;
@@ -126,22 +154,24 @@ export class ChunkRecording {
       channels.push([channel, entries.length / 2, 15 + bytes]);
       at = p;
     }
-    const records = this.buffer.buffer;
-    this.post({
-      recording: this.id, records, length: this.used, indexes: indexes.buffer, channels,
+    const buffer = this.buffer;
+    const done = this.sink({
+      records: buffer.subarray(0, this.used), indexes, channels,
       start: this.start, end: this.end, messages: this.count,
-    }, [records, indexes.buffer]);
+    });
+    if (done) this.recycle(buffer);
     this._open(this.chunkBytes);
   }
 
   _open(size) {
     const spare = size <= this.chunkBytes ? this.spare.pop() : undefined;
     this.buffer = spare || new Uint8Array(Math.max(size, this.chunkBytes));
-    this.view = new DataView(this.buffer.buffer);
+    this.view = new DataView(this.buffer.buffer, this.buffer.byteOffset, this.buffer.byteLength);
     this.used = 0;
     this.count = 0;
     this.start = null;
     this.end = null;
+    this.deadline = Infinity;
     /** channel id -> [log time, offset, log time, offset, ...] (BigInt) */
     this.index = new Map();
   }

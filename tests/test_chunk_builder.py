@@ -2,18 +2,21 @@
 # Licensed under the Apache License, Version 2.0
 
 """
-Chunks built in the tools worker, put into a bag by the launcher.
+Chunks built in the recording worker, put into a bag with the launcher.
 
 `--record` copies each message from the bus into the MCAP Message records
-of a chunk in the Node host's tools worker
-(packages/wasm_js/src/tools_process/chunk_recording.mjs); the launcher
-wraps each chunk in its Chunk record and writes the summary
-(colcon_wasm/record/mcap_file.py). Here a real bus in Node.js carries small
-messages and 900 KiB frames on two topics into that builder; its chunks go
-through the pipe's frame format into a BagWriter, and Foxglove's `mcap`
-(with CRC checks) and `rosbags` read the file: every message, in order,
-with its bytes, on its channel, with the chunk and message indexes. No
-build is needed (the end-to-end path is tests/test_record.py).
+of a chunk in the Node host's recording worker
+(packages/wasm_js/src/bridges/record/chunk_builder.mjs). Uncompressed, the
+worker writes each chunk into the bag itself (file_sink.mjs) after the
+Schema and Channel records the launcher hands it, and the launcher indexes
+what it reports and writes the summary; compressed, the chunks go through
+the pipe's frame format to the launcher, which wraps them in their Chunk
+records (colcon_wasm/record/mcap_file.py). Here a real bus in Node.js
+carries small messages and 900 KiB frames on two topics into that builder,
+both ways, and Foxglove's `mcap` (with CRC checks) and `rosbags` read the
+file: every message, in order, with its bytes, on its channel, with the
+chunk and message indexes. No build is needed (the end-to-end path is
+tests/test_record.py).
 """
 
 import io
@@ -44,13 +47,18 @@ class _Schemas:
         return 'uint8[] data\n'
 
 
-def _worker_chunks(tmp_path):
-    """Run the JS side; return (published [(channel, length, first byte)], chunk frames)."""
-    out = tmp_path / 'chunks.bin'
-    done = subprocess.run(['node', str(HERE / 'js' / 'chunk_recording_check.mjs'), str(SRC),
-                           str(out)], capture_output=True, text=True, timeout=120)
+def _check(*args, pass_fds=()):
+    done = subprocess.run(['node', str(HERE / 'js' / 'chunk_builder_check.mjs'), str(SRC),
+                           *map(str, args)], capture_output=True, text=True, timeout=120,
+                          pass_fds=pass_fds)
     assert done.returncode == 0, done.stdout + done.stderr
-    report = json.loads(done.stdout)
+    return json.loads(done.stdout)
+
+
+def _worker_chunks(tmp_path):
+    """Run the JS side in pipe mode; return (report, chunk frames)."""
+    out = tmp_path / 'chunks.bin'
+    report = _check('pipe', out)
     chunks = [bytes(body) for kind, body in frames.read_frames(io.BytesIO(out.read_bytes()))
               if kind == frames.CHUNK]
     return report, chunks
@@ -77,14 +85,36 @@ def _record(path, chunks, channels, compression='none'):
     return writer
 
 
-@pytest.mark.parametrize('compression', ['none', 'zstd', 'lz4'])
+def _written_by_the_worker(path, tmp_path):
+    """File mode: the launcher's BagWriter and the worker's file sink share the bag."""
+    writer = BagWriter(path, _Schemas(), host_writes=True)
+    for channel, topic in ((1, '/small'), (2, '/frames')):
+        assert writer.add_topic(topic, TYPE, [], channel=channel) == channel
+    records = tmp_path / 'records.bin'
+    records.write_bytes(writer.records_for_host())
+    report = _check('file', writer.fileno(), writer.host_offset, records,
+                    pass_fds=(writer.fileno(),))
+    for written in report['reports']:
+        writer.host_wrote(written)
+    writer.close()
+    assert not writer.failed
+    return report, writer
+
+
+@pytest.mark.parametrize('compression', ['file', 'none', 'zstd', 'lz4'])
 def test_worker_chunks_make_a_bag_that_mcap_and_rosbags_read(tmp_path, compression):
-    report, chunks = _worker_chunks(tmp_path)
+    bag = tmp_path / 'worker.mcap'
+    if compression == 'file':
+        report, writer = _written_by_the_worker(bag, tmp_path)
+        chunks = report['chunks']
+        # the records first, then one report per chunk
+        assert [r['kind'] for r in report['reports']] == ['records'] + ['chunk'] * len(chunks)
+    else:
+        report, chunks = _worker_chunks(tmp_path)
+        writer = _record(bag, chunks, [(1, '/small'), (2, '/frames')], compression)
     published = report['published']
     # a 900 KiB frame leaves no room for the next in a 1 MiB chunk
     assert len(chunks) >= 6, f'{len(chunks)} chunks for six frames'
-    bag = tmp_path / 'worker.mcap'
-    writer = _record(bag, chunks, [(1, '/small'), (2, '/frames')], compression)
     assert writer.messages == len(published)
 
     with open(bag, 'rb') as f:
@@ -96,7 +126,7 @@ def test_worker_chunks_make_a_bag_that_mcap_and_rosbags_read(tmp_path, compressi
         assert len(summary.chunk_indexes) == len(chunks)
         assert all(c.message_index_offsets for c in summary.chunk_indexes)
         assert {c.compression for c in summary.chunk_indexes} == {
-            '' if compression == 'none' else compression}
+            '' if compression in ('none', 'file') else compression}
         got = {1: [], 2: []}
         times = {1: [], 2: []}
         # the message indexes are used here (log_time_order): they must point at the records

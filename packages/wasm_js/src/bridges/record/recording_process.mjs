@@ -1,0 +1,117 @@
+// Copyright 2026 colcon-wasm contributors
+// Licensed under the Apache License, Version 2.0
+
+/**
+ * The main thread's handle of the recording worker (./recording_worker.mjs,
+ * Node.js only): it starts the worker as a bus process of the Runtime,
+ * sends it requests (each followed by a ring of its doorbell, since the
+ * worker reads them between waits) and passes its reports on.
+ *
+ * @module bridges/record/recording_process
+ */
+
+import { MessageChannel, Worker } from 'node:worker_threads';
+import { PROC_KIND_TOOLS } from '../../layout.mjs';
+
+/** After a wake-up the worker naps this long: bursts are taken together. */
+const COALESCE_MS = 5;
+
+export class RecordingProcess {
+  /**
+   * Start the recording worker.
+   * @param {import('../../runtime.mjs').Runtime} runtime
+   * @param {object} options
+   * @param {?number} options.fd the bag's descriptor, to write chunks to (null: post them)
+   * @param {number} options.offset where the worker's first write goes
+   * @param {number} options.chunkBytes chunk size
+   * @param {number} options.flushMs a chunk is closed at the latest this long after its first message
+   * @param {function(object): void} options.onReport gets the worker's reports:
+   *   {type: 'written'|'chunk'|'failed', ...}
+   * @returns {Promise<RecordingProcess>}
+   */
+  static async start(runtime, { fd, offset, chunkBytes, flushMs, onReport }) {
+    const pid = await runtime._allocPid(PROC_KIND_TOOLS);
+    const { port1, port2 } = new MessageChannel();
+    const worker = new Worker(new URL('./recording_worker.mjs', import.meta.url), {
+      name: 'wasm_js recorder',
+      workerData: {
+        handle: runtime.bus.handle, pid, control: port2, fd, offset, chunkBytes, flushMs,
+        coalesceMs: COALESCE_MS,
+      },
+      transferList: [port2],
+    });
+    return new RecordingProcess(runtime, pid, worker, port1, onReport);
+  }
+
+  constructor(runtime, pid, worker, port, onReport) {
+    this.runtime = runtime;
+    /** The recording worker's bus process id. */
+    this.pid = pid;
+    this._worker = worker;
+    this._port = port;
+    this._next = 1;
+    this._pending = new Map();
+    this._onReport = onReport;
+    this._ended = false;
+    this.exited = new Promise((resolve) => {
+      worker.on('exit', (code) => {
+        this._ended = true;
+        const why = new Error(`the recording worker ended (exit code ${code})`);
+        for (const p of this._pending.values()) p.reject(why);
+        this._pending.clear();
+        // its endpoints leave the graph as those of any process that ends
+        runtime._reap(pid, null).then(resolve, resolve);
+      });
+    });
+    worker.on('error', (e) => onReport({ type: 'failed', code: 'EWORKER', message: `the recording worker failed: ${e.message}`, kept: null }));
+    worker.on('message', (m) => {
+      if (m.type !== 'reply') {
+        onReport(m);
+        return;
+      }
+      const p = this._pending.get(m.id);
+      if (!p) return;
+      this._pending.delete(m.id);
+      if (m.error) p.reject(Object.assign(new Error(m.error.message), { code: m.error.code }));
+      else p.resolve(m.value);
+    });
+    runtime._atClose(() => this.stop());
+  }
+
+  /** Send a request; its answer comes back from the worker. */
+  _call(op, args, transfer = []) {
+    if (this._ended) return Promise.reject(new Error('the recording worker has ended'));
+    const id = this._next++;
+    return new Promise((resolve, reject) => {
+      this._pending.set(id, { resolve, reject });
+      this._port.postMessage({ id, op, args }, transfer);
+      this.runtime.bus.ring(this.pid);
+    });
+  }
+
+  /** Create the recorder's node. */
+  node(name, namespace = '/') {
+    return this._call('node', { name, namespace });
+  }
+
+  /**
+   * Record a topic as MCAP channel `channel`: `records` (the launcher's
+   * Schema/Channel records, file mode) reach the bag first.
+   * @returns {Promise<number>} the subscription endpoint
+   */
+  add({ node, topic, type, qos, channel, records }) {
+    return this._call('add', { node, topic, type, qos, channel, records });
+  }
+
+  /** Give a posted chunk's records buffer back (pipe mode). */
+  recycle(buffer) {
+    if (this._ended) return;
+    this._port.postMessage({ id: 0, op: 'recycle', args: { buffer } }, [buffer]);
+  }
+
+  /** Record what is waiting, close the last chunk, unsubscribe; resolves once the worker ended. */
+  async stop() {
+    if (!this._ended) await this._call('stop').catch(() => {});
+    await this.exited;
+  }
+}
