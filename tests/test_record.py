@@ -202,6 +202,27 @@ def _write_rosbags_bag(path, install, gaps_ms, extra_unknown=True):
 GAPS_MS = [0, 100, 50, 300, 20, 20, 500, 150, 80, 400, 60, 200]
 
 
+def test_messages_lost_before_the_recorder_took_them_are_counted(install, tmp_path):
+    # a talker whose history holds one message, at 2 kHz: the recorder, which
+    # wakes at most every few milliseconds, finds most of them overwritten
+    path = tmp_path / 'lossy.mcap'
+    code, out, err = colcon_wasm('run', '--install-base', install, '--duration', '3',
+                                 '--record', path, 'demo_nodes', 'talker', '--ros-args',
+                                 '-p', 'rate:=2000', '-p', 'depth:=1')
+    assert code == 0, out + err
+    said = re.search(r'(\d+) messages were lost before the recorder took them', err)
+    assert said, err
+    lost = int(said.group(1))
+    assert re.search(rf"recorded \d+ messages into '.*lossy\.mcap' \({lost} lost before",
+                     err), err
+    counts = [d.count for topic, _, _, d, _ in mcap_messages(path) if topic == '/chatter']
+    assert lost > 0 and counts == sorted(counts)
+    # every message from the first recorded one to the last published one is
+    # either in the bag or counted as lost; none before the subscription is
+    assert counts[-1] == max(int(n) for n in re.findall(r'Hello World: (\d+)', out))
+    assert counts[-1] - counts[0] + 1 <= len(counts) + lost <= counts[-1]
+
+
 def test_a_rosbags_bag_plays_into_the_cpp_listener_in_order_and_time(install, tmp_path):
     bag = tmp_path / 'bag'
     sent = _write_rosbags_bag(bag, install, GAPS_MS)

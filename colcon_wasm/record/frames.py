@@ -25,7 +25,9 @@ Recording (host to launcher):
   ...]}``, then ``R`` bytes of the chunk's MCAP Message records, then its
   MessageIndex records (built by the host's recording worker,
   bridges/record/chunk_builder.mjs), for the launcher to compress;
-- ``NOTE``: JSON ``{"dropped": N}`` when the host dropped messages.
+- ``NOTE``: JSON ``{"dropped": N, "lost": M}`` when the host dropped
+  messages (the launcher did not keep up) or the bus lost some before the
+  recorder took them (a publisher's history overwritten).
 
 Replies to recording (launcher to host, a pipe of their own):
 

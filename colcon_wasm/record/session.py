@@ -196,7 +196,7 @@ class BagSession:
         print(f'[{level}] [rosbag2]: {text}', file=self.err, flush=True)
 
     def _record(self, writer, stream, answers):
-        dropped = 0
+        dropped = lost = 0
         try:
             # the chunk is written before the next frame is read: one buffer for all
             for kind, body in frames.read_frames(stream):
@@ -209,7 +209,9 @@ class BagSession:
                 elif kind == frames.CHUNK:
                     writer.write_chunk(*frames.decode_chunk(body))
                 elif kind == frames.NOTE:
-                    dropped = json.loads(bytes(body)).get('dropped', dropped)
+                    note = json.loads(bytes(body))
+                    dropped = note.get('dropped', dropped)
+                    lost = note.get('lost', lost)
                 if writer.failed and not self.failed:
                     self.failed = True
                     self._say('ERROR', writer.failed)
@@ -222,9 +224,13 @@ class BagSession:
                 self.failed = True
                 self._say('ERROR', writer.failed)
             if not writer.failed:
-                lost = f' ({dropped} dropped: the disk did not keep up)' if dropped else ''
+                missed = [f'{dropped} dropped: the disk did not keep up'] if dropped else []
+                if lost:
+                    missed.append(f"{lost} lost before the recorder took them: the publishers' "
+                                  'history was overwritten')
+                missed = f" ({'; '.join(missed)})" if missed else ''
                 self._say('INFO',
-                          f"recorded {writer.messages} messages into '{writer.path}'{lost}")
+                          f"recorded {writer.messages} messages into '{writer.path}'{missed}")
 
     def _answer(self, writer, c, answers):
         """Add a topic the host found; tell the host to record it (with its records) or not."""

@@ -2,7 +2,8 @@
 // Licensed under the Apache License, Version 2.0
 
 // Publishes demo_interfaces/msg/Chatter "Hello World: N" on /chatter, first
-// at once, then every 1/rate seconds (-p rate:=HZ, default 1).
+// at once, then every 1/rate seconds (-p rate:=HZ, default 1), keeping the
+// last -p depth:=N messages for its subscribers (QoS history depth, default 10).
 
 #include <chrono>
 #include <string>
@@ -20,8 +21,11 @@ int main(int argc, char ** argv)
   auto node = demo_nodes::unwrap(
     wasm_cpp::Node::make(context, name, args.node_namespace), name, "creating the node");
   std::string topic = demo_nodes::resolve_name(args, "chatter");
+  wasm_cpp::QoS qos;
+  double depth = demo_nodes::parameter(args, "depth", 10.0);
+  qos.depth = depth >= 1 ? static_cast<size_t>(depth) : 1;
   auto publisher = demo_nodes::unwrap(
-    wasm_cpp::Publisher::make(node, topic, "demo_interfaces/msg/Chatter", wasm_cpp::QoS{}),
+    wasm_cpp::Publisher::make(node, topic, "demo_interfaces/msg/Chatter", qos),
     name, "creating the publisher");
   auto period = std::chrono::duration<double>(1.0 / (rate > 0 ? rate : 1.0));
   for (uint32_t count = 1;; ++count) {

@@ -171,11 +171,14 @@ export class Recorder {
     // the subscriptions in the making first; the worker's last reports come
     // before its answer to stop
     await Promise.all(this.subscriptions);
-    if (this.process) await this.process.stop();
+    const { lost } = this.process ? await this.process.stop() : { lost: 0 };
     if (this.dropped) {
       this.log('warning', `${this.dropped} messages were dropped: the launcher did not keep up with writing them`);
-      this._send(jsonFrame(Kind.NOTE, { dropped: this.dropped }));
     }
+    if (lost) {
+      this.log('warning', `${lost} messages were lost before the recorder took them: their publishers' history (QoS depth) was overwritten first; a deeper history keeps them`);
+    }
+    if (this.dropped || lost) this._send(jsonFrame(Kind.NOTE, { dropped: this.dropped, lost }));
     this.replies.destroy();
     if (this.broken) return;
     await new Promise((resolve) => this.sink.end(resolve));

@@ -109,9 +109,15 @@ export class RecordingProcess {
     this._port.postMessage({ id: 0, op: 'recycle', args: { buffer } }, [buffer]);
   }
 
-  /** Record what is waiting, close the last chunk, unsubscribe; resolves once the worker ended. */
+  /**
+   * Record what is waiting, close the last chunk, unsubscribe; resolves once the worker ended.
+   * @returns {Promise<{lost: number}>} messages the publishers' histories dropped before the
+   *   worker took them
+   */
   async stop() {
-    if (!this._ended) await this._call('stop').catch(() => {});
+    let result = { lost: 0 };
+    if (!this._ended) result = await this._call('stop').catch(() => result);
     await this.exited;
+    return result;
   }
 }

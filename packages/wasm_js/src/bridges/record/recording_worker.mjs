@@ -25,7 +25,7 @@
  */
 
 import { parentPort, receiveMessageOnPort, workerData } from 'node:worker_threads';
-import { BusClient, KIND_SUBSCRIPTION } from '../../bus_client.mjs';
+import { BusClient, EventType, KIND_SUBSCRIPTION } from '../../bus_client.mjs';
 import { ChunkBuilder } from './chunk_builder.mjs';
 import { BagWriteError, FileSink } from './file_sink.mjs';
 
@@ -101,7 +101,11 @@ const operations = {
   recycle({ buffer }) {
     builder.recycle(buffer);
   },
-  /** Record what is waiting, close the last chunk, unsubscribe, end the loop. */
+  /**
+   * Record what is waiting, close the last chunk, unsubscribe, end the loop.
+   * @returns {{lost: number}} the messages the publishers' histories dropped
+   *   before this worker took them (the bus counts them per subscription)
+   */
   stop() {
     record();
     if (!failed) {
@@ -111,9 +115,14 @@ const operations = {
         fail(e);
       }
     }
-    for (const ep of endpoints) client.destroyEndpoint(ep);
+    let lost = 0;
+    for (const ep of endpoints) {
+      lost += client.eventStatus(ep, EventType.MESSAGE_LOST, false).total;
+      client.destroyEndpoint(ep);
+    }
     endpoints.clear();
     running = false;
+    return { lost };
   },
 };
 
