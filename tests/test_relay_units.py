@@ -454,3 +454,38 @@ def test_rosapi_node_details_answers_for_a_client_that_is_one_node(relay):
         '/a', '/b', '/rosapi', '/rosbridge_websocket', '/talker'], nodes
     assert len(nodes) == 6, nodes
 
+
+def test_foxglove_parameter_values_both_ways():
+    """Serve --foxglove: Foxglove parameters to rcl ParameterValues (JSON) and back."""
+    from colcon_wasm.server.foxglove_parameters import from_rcl
+    from colcon_wasm.server.foxglove_parameters import ParameterError
+    from colcon_wasm.server.foxglove_parameters import split_name
+    from colcon_wasm.server.foxglove_parameters import to_rcl
+    cases = [
+        ({'value': True}, {'type': 1, 'bool_value': True}),
+        ({'value': 2 ** 53 + 1}, {'type': 2, 'integer_value': 2 ** 53 + 1}),
+        ({'value': 2.5, 'type': 'float64'}, {'type': 3, 'double_value': 2.5}),
+        ({'value': 'hi'}, {'type': 4, 'string_value': 'hi'}),
+        ({'value': 'AAH/', 'type': 'byte_array'}, {'type': 5, 'byte_array_value': [0, 1, 255]}),
+        ({'value': [True, False]}, {'type': 6, 'bool_array_value': [True, False]}),
+        ({'value': [1, 2]}, {'type': 7, 'integer_array_value': [1, 2]}),
+        ({'value': [1.0, 2.5], 'type': 'float64_array'},
+         {'type': 8, 'double_array_value': [1.0, 2.5]}),
+        ({'value': ['a', 'b']}, {'type': 9, 'string_array_value': ['a', 'b']}),
+    ]
+    for foxglove, rcl in cases:
+        assert to_rcl({'name': '/n.p', **foxglove}) == rcl, foxglove
+        assert from_rcl('/n.p', rcl) == {'name': '/n.p', **foxglove}, rcl
+    # a double that looks like an integer stays a double; a value left out deletes
+    assert to_rcl({'name': '/n.p', 'value': 3, 'type': 'float64'}) == {'type': 3,
+                                                                       'double_value': 3.0}
+    assert to_rcl({'name': '/n.p'}) == {'type': 0}
+    assert from_rcl('/n.p', {'type': 0}) is None
+    assert split_name('/ns/talker.rate.max') == ('/ns/talker', 'rate.max')
+    assert split_name('talker.rate') == ('/talker', 'rate')
+    for bad in ('/talker', '/talker.', 7):
+        with pytest.raises(ParameterError, match='not'):
+            split_name(bad)
+    for bad in ({'value': {'a': 1}}, {'value': [1, 'a']}, {'value': 'no!', 'type': 'byte_array'}):
+        with pytest.raises(ParameterError, match="parameter '/n.p'"):
+            to_rcl({'name': '/n.p', **bad})
