@@ -62,11 +62,45 @@ def _check_params(r, node):
     assert event['changed'][0]['value']['string_value'] == 'hi from foxglove'
 
 
+def _check_param_errors(errors, node):
+    """Check what the `paramErrors` mode of foxglove_client.mjs got of ``node``."""
+    # a node the graph does not have: an error status with the request's id, and the values
+    status, values = errors['unknown']['status'], errors['unknown']['values']
+    assert status['level'] == 2 and '/nobody_here' in status['message'], status
+    assert 'no node /nobody_here' in status['message'], status
+    assert values['parameters'] == [], values
+    assert "'no_dot_here' is not <node>.<parameter>" in errors['badName']['message']
+    assert errors['badName']['level'] == 2
+    assert 'is no ROS 2 parameter value' in errors['badValue']['message'], errors['badValue']
+    # the node refused a string for an integer parameter: its reason, and the value it kept
+    refused = errors['refused']
+    assert refused['status']['level'] == 2 and 'period_ms' in refused['status']['message']
+    assert refused['values']['parameters'] == [{'name': f'{node}.period_ms',
+                                                'value': 100}], refused
+    assert "needs 'parameterNames'" in errors['notAList']['message'], errors['notAList']
+    # and the connection is still up
+    assert [p['name'] for p in errors['stillUp']['parameters']] == [f'{node}.greeting'], errors
+    # unsubscribed from greeting: its last change was set, but not sent as an update
+    assert errors['setUnwatched']['parameters'] == [{'name': f'{node}.greeting',
+                                                     'value': 'not watched'}]
+    updates = errors['updates']
+    assert {'name': f'{node}.greeting', 'value': 'watched'} in updates, updates
+    assert {'name': f'{node}.period_ms', 'value': 250} in updates, updates
+    assert not [u for u in updates if u.get('value') == 'not watched'], updates
+
+
 def test_foxglove_gets_sets_and_watches_an_rclcpp_parameter(server):
     """Check getParameters (one, all), setParameters with an id, and its update."""
     r = node_script('foxglove_client.mjs', 'params', server.url, '/talker', 'greeting',
                     '"hi from foxglove"')
     _check_params(r, '/talker')
+
+
+def test_foxglove_bad_parameter_requests_and_unsubscribing(server):
+    """Each bad parameter request gets an error status with its id; unsubscribed names rest."""
+    errors = node_script('foxglove_client.mjs', 'paramErrors', server.url, '/talker', 'greeting',
+                         'period_ms')
+    _check_param_errors(errors, '/talker')
 
 
 def test_foxglove_time_from_clock(server):
@@ -137,26 +171,4 @@ def test_serve_foxglove_parameters_of_a_page_node(tmp_path):
     assert result['ok'], explain_page(result)
     _check_params(r, '/param_talker')
     assert '/probe_listener.use_sim_time' in r['all'], r['all']
-    # a node the graph does not have: an error status with the request's id, and the values
-    status, values = errors['unknown']['status'], errors['unknown']['values']
-    assert status['level'] == 2 and '/nobody_here' in status['message'], status
-    assert 'no node /nobody_here' in status['message'], status
-    assert values['parameters'] == [], values
-    assert "'no_dot_here' is not <node>.<parameter>" in errors['badName']['message']
-    assert errors['badName']['level'] == 2
-    assert 'is no ROS 2 parameter value' in errors['badValue']['message'], errors['badValue']
-    # the node refused a string for an integer parameter: its reason, and the value it kept
-    refused = errors['refused']
-    assert refused['status']['level'] == 2 and 'period_ms' in refused['status']['message']
-    assert refused['values']['parameters'] == [{'name': '/param_talker.period_ms',
-                                                'value': 100}], refused
-    assert "needs 'parameterNames'" in errors['notAList']['message'], errors['notAList']
-    assert errors['stillUp']['parameters'] == [{'name': '/param_talker.greeting',
-                                                'value': 'hi from foxglove'}], errors['stillUp']
-    # unsubscribed from greeting: its last change was set, but not sent as an update
-    assert errors['setUnwatched']['parameters'] == [{'name': '/param_talker.greeting',
-                                                     'value': 'not watched'}]
-    updates = errors['updates']
-    assert {'name': '/param_talker.greeting', 'value': 'watched'} in updates, updates
-    assert {'name': '/param_talker.period_ms', 'value': 250} in updates, updates
-    assert not [u for u in updates if u.get('value') == 'not watched'], updates
+    _check_param_errors(errors, '/param_talker')
