@@ -9,7 +9,8 @@ Chromium); the page joins serve's relay; npm `@foxglove/ws-protocol`'s
 FoxgloveClient (tests/js/foxglove_client.mjs, mode `relay`) connects to
 serve's Foxglove port, decodes the page's CDR with `@foxglove/rosmsg2-
 serialization` from the advertised schema, publishes JSON to the page's
-listener and calls its service. All on 127.0.0.1, every wait bounded.
+listener, calls its service and follows the connection graph by node as
+the page stops its listener. All on 127.0.0.1, every wait bounded.
 """
 
 from concurrent.futures import ThreadPoolExecutor
@@ -33,7 +34,10 @@ def test_a_foxglove_client_sees_hears_and_drives_the_pages(tmp_path):
         {'until': 'colconWasm.session.bridge && colconWasm.session.bridge.state === '
                   "'connected' && colconWasm.session.bridge.relay"},
         {'wait': 'listener', 'text': 'I heard: [from foxglove json 4]', 'timeoutMs': 60000},
-        {'sleep': 2000},
+        # the Foxglove client sees the listener leave the connection graph
+        {'stop': 'listener'},
+        # its last call
+        {'wait': 'server', 'text': 'Incoming request: a: 4242 b: 1', 'timeoutMs': 60000},
     ]
     with ServedPage(install, args=['--foxglove', '127.0.0.1:0']) as served:
         assert served.foxglove_url and served.foxglove_url.startswith('ws://127.0.0.1:'), \
@@ -44,7 +48,9 @@ def test_a_foxglove_client_sees_hears_and_drives_the_pages(tmp_path):
             result = page.result(timeout=200)
     assert result['ok'], explain_page(result)
     assert r['protocol'] == 'foxglove.websocket.v1' and r['sdkProtocol'] == 'foxglove.sdk.v1'
-    assert set(r['info']['capabilities']) == {'clientPublish', 'services'}, r['info']
+    # the demo's install has no rcl_interfaces: no parameters (test_foxglove_rclcpp.py has them)
+    assert set(r['info']['capabilities']) == {'clientPublish', 'services', 'connectionGraph'}, \
+        r['info']
     assert r['info']['supportedEncodings'] == ['json'], r['info']
     channel = r['channel']
     assert (channel['encoding'], channel['schemaEncoding'], channel['schemaName']) == \
@@ -67,3 +73,16 @@ def test_a_foxglove_client_sees_hears_and_drives_the_pages(tmp_path):
     assert any("unknown or unsupported op 'noSuchOp'" in s for s in statuses), statuses
     assert any('unknown binary opcode 0x7f' in s for s in statuses), statuses
     assert any("takes json, not 'cdr'" in s for s in statuses), statuses
+    assert r['last'] == {'sum': 4243}, r
+    # the connection graph by node (which node of the tab holds which endpoint), as the
+    # page's nodes come and go: the first update is complete, then what changed
+    before, after = r['graphBefore'], r['graphAfter']
+    assert before['published']['/chatter'] == ['/talker'], before
+    assert before['subscribed']['/chatter'] == ['/listener'], before
+    assert before['services']['/add_two_ints'] == ['/add_two_ints_server'], before
+    assert r['firstGraph']['removedTopics'] == [] and r['firstGraph']['publishedTopics'], r
+    # then this server subscribed to /chatter and published on it for the client (its
+    # node is foxglove_bridge's), and the listener left
+    assert after['subscribed']['/chatter'] == ['/foxglove_bridge'], after
+    assert after['published']['/chatter'] == ['/foxglove_bridge', '/talker'], after
+    assert after['services'] == before['services'], after

@@ -400,8 +400,17 @@ def test_png_fragments_and_binary_limits_on_subscriptions():
         relay.close()
 
 
+def _rosapi(client, service, args, rid):
+    """Call a rosapi service of the relay; return its values."""
+    client.send({'op': 'call_service', 'id': rid, 'service': f'/rosapi/{service}',
+                 'args': args})
+    reply = client.until(lambda m: m.get('op') == 'service_response' and m.get('id') == rid)
+    assert reply and reply['result'], reply
+    return reply['values']
+
+
 def test_rosapi_node_details_answers_for_a_client_that_is_one_node(relay):
-    """node_details: a one-node client's endpoints; nothing for a node of a many-node tab."""
+    """node_details: a one-node client's endpoints; a reporting tab's, node by node."""
     one, many, caller = Client(relay), Client(relay), Client(relay)
     for c in (one, many, caller):
         c.receive()
@@ -409,19 +418,74 @@ def test_rosapi_node_details_answers_for_a_client_that_is_one_node(relay):
     one.send({'op': 'advertise', 'topic': '/chatter', 'type': 't/msg/Time'})
     one.send({'op': 'subscribe', 'topic': '/cmd', 'type': 't/msg/Time', 'id': 'c'})
     one.send({'op': 'advertise_service', 'service': '/talker/reset', 'type': 't/srv/Reset'})
-    many.send({'op': 'colcon_wasm_graph', 'nodes': ['/a', '/b'], 'version': 2})
+    # a tab of two nodes that says which holds which endpoint (all of them, bridged or not)
+    many.send({'op': 'colcon_wasm_graph', 'nodes': ['/a', '/b'], 'version': 2, 'endpoints': {
+        '/a': {'publishing': ['/other', '/rosout'], 'subscribing': [], 'services': []},
+        '/b': {'publishing': ['/rosout'], 'subscribing': ['/other', '/cmd'],
+               'services': ['/b/reset']}}})
     many.send({'op': 'advertise', 'topic': '/other', 'type': 't/msg/Time'})
-    time.sleep(0.2)
+    many.send({'op': 'subscribe', 'topic': '/cmd', 'type': 't/msg/Time', 'id': 'c'})
+    many.send({'op': 'advertise_service', 'service': '/b/reset', 'type': 't/srv/Reset'})
+    # each client's requests are handled in order: these answers follow what they sent
+    _rosapi(one, 'get_time', {}, 'sync')
+    _rosapi(many, 'get_time', {}, 'sync')
 
     def details(node, rid):
-        caller.send({'op': 'call_service', 'id': rid, 'service': '/rosapi/node_details',
-                    'args': {'node': node}})
-        reply = caller.until(lambda m: m.get('op') == 'service_response' and m['id'] == rid)
-        assert reply and reply['result'], reply
-        return reply['values']
+        return _rosapi(caller, 'node_details', {'node': node}, rid)
 
     assert details('/talker', 'd1') == {'subscribing': ['/cmd'], 'publishing': ['/chatter'],
                                         'services': ['/talker/reset']}
     assert details('talker', 'd2')['publishing'] == ['/chatter']  # a relative name
-    assert details('/a', 'd3') == {'subscribing': [], 'publishing': [], 'services': []}
-    assert details('/nobody', 'd4') == {'subscribing': [], 'publishing': [], 'services': []}
+    assert details('/a', 'd3') == {'subscribing': [], 'publishing': ['/other', '/rosout'],
+                                   'services': []}
+    assert details('/b', 'd4') == {'subscribing': ['/cmd', '/other'], 'publishing': ['/rosout'],
+                                   'services': ['/b/reset']}
+    assert details('/nobody', 'd5') == {'subscribing': [], 'publishing': [], 'services': []}
+    assert '/rosapi/node_details' in details('/rosapi', 'd6')['services']
+    # publishers, subscribers and providers name the nodes that hold the endpoint
+    assert _rosapi(caller, 'publishers', {'topic': '/other'}, 'p') == {'publishers': ['/a']}
+    assert _rosapi(caller, 'subscribers', {'topic': '/cmd'}, 's') == {
+        'subscribers': ['/b', '/talker']}
+    assert _rosapi(caller, 'service_providers', {'service': '/b/reset'}, 'v') == {
+        'providers': ['/b']}
+    # the caller reported nothing: a node of its own (numbered as it connected)
+    nodes = _rosapi(caller, 'nodes', {}, 'n')['nodes']
+    assert [n for n in nodes if not n.startswith('/rosbridge_relay/client_')] == [
+        '/a', '/b', '/rosapi', '/rosbridge_websocket', '/talker'], nodes
+    assert len(nodes) == 6, nodes
+
+
+def test_foxglove_parameter_values_both_ways():
+    """Serve --foxglove: Foxglove parameters to rcl ParameterValues (JSON) and back."""
+    from colcon_wasm.server.foxglove_parameters import from_rcl
+    from colcon_wasm.server.foxglove_parameters import ParameterError
+    from colcon_wasm.server.foxglove_parameters import split_name
+    from colcon_wasm.server.foxglove_parameters import to_rcl
+    cases = [
+        ({'value': True}, {'type': 1, 'bool_value': True}),
+        ({'value': 2 ** 53 + 1}, {'type': 2, 'integer_value': 2 ** 53 + 1}),
+        ({'value': 2.5, 'type': 'float64'}, {'type': 3, 'double_value': 2.5}),
+        ({'value': 'hi'}, {'type': 4, 'string_value': 'hi'}),
+        ({'value': 'AAH/', 'type': 'byte_array'}, {'type': 5, 'byte_array_value': [0, 1, 255]}),
+        ({'value': [True, False]}, {'type': 6, 'bool_array_value': [True, False]}),
+        ({'value': [1, 2]}, {'type': 7, 'integer_array_value': [1, 2]}),
+        ({'value': [1.0, 2.5], 'type': 'float64_array'},
+         {'type': 8, 'double_array_value': [1.0, 2.5]}),
+        ({'value': ['a', 'b']}, {'type': 9, 'string_array_value': ['a', 'b']}),
+    ]
+    for foxglove, rcl in cases:
+        assert to_rcl({'name': '/n.p', **foxglove}) == rcl, foxglove
+        assert from_rcl('/n.p', rcl) == {'name': '/n.p', **foxglove}, rcl
+    # a double that looks like an integer stays a double; a value left out deletes
+    assert to_rcl({'name': '/n.p', 'value': 3, 'type': 'float64'}) == {'type': 3,
+                                                                       'double_value': 3.0}
+    assert to_rcl({'name': '/n.p'}) == {'type': 0}
+    assert from_rcl('/n.p', {'type': 0}) is None
+    assert split_name('/ns/talker.rate.max') == ('/ns/talker', 'rate.max')
+    assert split_name('talker.rate') == ('/talker', 'rate')
+    for bad in ('/talker', '/talker.', 7):
+        with pytest.raises(ParameterError, match='not'):
+            split_name(bad)
+    for bad in ({'value': {'a': 1}}, {'value': [1, 'a']}, {'value': 'no!', 'type': 'byte_array'}):
+        with pytest.raises(ParameterError, match="parameter '/n.p'"):
+            to_rcl({'name': '/n.p', **bad})

@@ -5,9 +5,10 @@
 ``colcon-wasm serve --foxglove [HOST:]PORT``: Foxglove on the served pages' graph.
 
 The pages of serve meet in its rosbridge relay (relay.py); this server is
-one more client of that relay, over loopback (:class:`RelayLink`), and
-speaks the Foxglove WebSocket protocol (both subprotocols) to Foxglove
-Studio, Lichtblick or ``@foxglove/ws-protocol`` clients:
+a client of that relay, over loopback (two links, foxglove_link.py: one
+for the data its clients subscribe to, one for its own requests), and speaks
+the Foxglove WebSocket protocol (both subprotocols) to Foxglove Studio,
+Lichtblick or ``@foxglove/ws-protocol`` clients:
 
 * every topic of the relay's graph is a channel with ``encoding: cdr``,
   ``schemaEncoding: ros2msg`` and the complete definition from the
@@ -16,19 +17,23 @@ Studio, Lichtblick or ``@foxglove/ws-protocol`` clients:
   pages' publishers send the relay (``cbor-raw``), never decoded;
 * ``clientPublish`` and service calls in ``json`` (the relay routes JSON;
   this server has no CDR codec of its own, so it does not offer ``cdr``);
+* ``parameters`` and ``parametersSubscribe`` over the nodes' rcl parameter
+  services and ``/parameter_events``, which the pages bridge to the relay
+  (foxglove_parameters.py), when the install describes rcl_interfaces;
+* ``connectionGraph``: which node publishes, subscribes to and serves what,
+  from the relay's rosapi, to which the pages report their nodes'
+  endpoints (foxglove_graph.py);
 * one send queue per subscription (``queue_messages`` newest kept, drops
   counted), sent round robin, so a flood on one topic never starves another;
 * ``time``: once ``/clock`` (rosgraph_msgs/msg/Clock) is in the graph, this
   server follows it (in JSON, whoever publishes it) and sends every client
   its time; clients that connect after it appeared see the capability.
 
-Parameters and the connection graph are not offered here: the pages do
-not bridge their nodes' parameter services to the relay, and the relay
-knows its peers (pages), not which of a page's nodes holds which endpoint
-(``run``/``launch --foxglove`` has both). See docs/bridge.md.
+See docs/bridge.md, "serve --foxglove".
 """
 
 import collections
+from concurrent.futures import ThreadPoolExecutor
 from http.server import BaseHTTPRequestHandler
 from http.server import ThreadingHTTPServer
 import itertools
@@ -38,13 +43,16 @@ import struct
 import threading
 import time
 
-import cbor2
 from colcon_core.logging import colcon_logger
 from colcon_wasm.ros2msg import SchemaError
 from colcon_wasm.server import foxglove_wire as wire
+from colcon_wasm.server.foxglove_graph import ConnectionGraph
+from colcon_wasm.server.foxglove_link import RelayLink
+from colcon_wasm.server.foxglove_parameters import EVENTS_TOPIC
+from colcon_wasm.server.foxglove_parameters import ParameterError
+from colcon_wasm.server.foxglove_parameters import Parameters
 from colcon_wasm.server.http import bind_error
 from colcon_wasm.server.relay_http import refuse
-from colcon_wasm.server.websocket import connect
 from colcon_wasm.server.websocket import Connection
 from colcon_wasm.server.websocket import handshake_response
 
@@ -55,31 +63,6 @@ SEND_HIGH_WATER = 8 * 1024 * 1024
 CALL_TIMEOUT = 10.0
 CLOCK_TOPIC = '/clock'
 CLOCK_TYPE = 'rosgraph_msgs/msg/Clock'
-
-
-class RelayLink:
-    """This server's rosbridge connection to serve's relay."""
-
-    def __init__(self, url, on_message):
-        """Connect; ``on_message(msg)`` gets each decoded relay message (reader thread)."""
-        self.connection = connect(url, timeout=10, max_message_bytes=256 << 20,
-                                  max_queued_bytes=64 << 20)
-        self._on_message = on_message
-        threading.Thread(target=self._read, daemon=True).start()
-
-    def _read(self):
-        def receive(data, binary):
-            try:
-                msg = cbor2.loads(data) if binary else json.loads(data)
-            except (ValueError, cbor2.CBORDecodeError):
-                return
-            if isinstance(msg, dict):
-                self._on_message(msg)
-        self.connection.run(receive)
-
-    def send(self, **msg):
-        """Send one rosbridge request."""
-        self.connection.send(json.dumps(msg))
 
 
 class FoxgloveRelayServer(ThreadingHTTPServer):
@@ -118,6 +101,13 @@ class FoxgloveRelayServer(ThreadingHTTPServer):
                              fix='--foxglove HOST:PORT (port 0 picks a free port)',
                              option='--foxglove') from None
         self.link = RelayLink(relay_url, self._from_relay)
+        # this server's own requests, and /parameter_events in JSON: the relay sends a
+        # client one form of a topic, and a Foxglove client may subscribe to it in CDR
+        self.control = RelayLink(relay_url, self._from_control)
+        self.parameters = Parameters(self)
+        self.parameters.follow()
+        self.graph = ConnectionGraph(self)
+        self.requests = ThreadPoolExecutor(4, thread_name_prefix='foxglove-request')
         threading.Thread(target=self._catalog_loop, daemon=True).start()
 
     @property
@@ -129,10 +119,19 @@ class FoxgloveRelayServer(ThreadingHTTPServer):
     def server_close(self):
         """Stop the catalog, close the sessions and the link."""
         self._stop.set()
+        self.graph.stop()
         for session in list(self.sessions):
             session.conn.close(1001, 'the server is stopping')
-        self.link.connection.close(1000, 'stopping')
+        self.link.close()
+        self.control.close()
+        self.requests.shutdown(wait=False, cancel_futures=True)
         super().server_close()
+
+    def capabilities(self):
+        """Return the capabilities a client connecting now is told."""
+        return ['clientPublish', 'services', 'connectionGraph'] + (
+            ['parameters', 'parametersSubscribe'] if self.parameters.available else []) + (
+            ['time'] if self.clock else [])
 
     # ------------------------------------------------------------ catalog
 
@@ -173,6 +172,10 @@ class FoxgloveRelayServer(ThreadingHTTPServer):
                                   (msg.get('values') or {}).get('type', ''))
             elif rid in self.calls:
                 self._answer(rid, msg)
+
+    def _from_control(self, msg):
+        if msg.get('op') == 'publish' and msg.get('topic') == EVENTS_TOPIC:
+            self.parameters.event(msg.get('msg'))
 
     def _schema(self, type_name, what):
         try:
@@ -372,8 +375,8 @@ class FoxgloveSession:
         self._ready = threading.Condition()
         self._closed = False
         threading.Thread(target=self._send_loop, daemon=True).start()
-        capabilities = ['clientPublish', 'services'] + (['time'] if server.clock else [])
-        self.send_json(op='serverInfo', name='colcon-wasm serve', capabilities=capabilities,
+        self.send_json(op='serverInfo', name='colcon-wasm serve',
+                       capabilities=server.capabilities(),
                        supportedEncodings=['json'], metadata={'subprotocol': subprotocol},
                        sessionId=str(id(self)))
         with server.lock:
@@ -389,9 +392,10 @@ class FoxgloveSession:
         """Send one JSON message."""
         self.conn.send(json.dumps(msg))
 
-    def status(self, level, message):
-        """Send a status message."""
-        self.send_json(op='status', level=level, message=message)
+    def status(self, level, message, rid=None):
+        """Send a status message (with the id of the request it answers, when given)."""
+        self.send_json(op='status', level=level, message=message,
+                       **({} if rid is None else {'id': rid}))
 
     def on_message(self, data, binary):
         """Handle one client message; bad input gets a status and the connection stays."""
@@ -421,13 +425,19 @@ class FoxgloveSession:
         if handler is None:
             op = msg.get('op') if isinstance(msg, dict) else None
             self.status(wire.ERROR, f'unknown or unsupported op {op!r} (this server offers '
-                                    'subscribe, unsubscribe, advertise, unadvertise and binary '
-                                    'clientPublish and serviceCallRequest)')
+                                    'subscribe, unsubscribe, advertise, unadvertise, '
+                                    'getParameters, setParameters, subscribeParameterUpdates, '
+                                    'unsubscribeParameterUpdates, subscribeConnectionGraph, '
+                                    'unsubscribeConnectionGraph and binary clientPublish and '
+                                    'serviceCallRequest)')
             return
         try:
             handler(msg)
+        except ParameterError as e:
+            self.status(wire.ERROR, str(e), msg.get('id'))
         except (KeyError, TypeError, ValueError) as e:
-            self.status(wire.ERROR, f"{msg.get('op')}: bad request ({type(e).__name__}: {e})")
+            self.status(wire.ERROR, f"{msg.get('op')}: bad request ({type(e).__name__}: {e})",
+                        msg.get('id'))
 
     def _op_subscribe(self, msg):
         with self.server.lock:
@@ -480,6 +490,46 @@ class FoxgloveSession:
         if channel['topic'] == CLOCK_TOPIC:
             self.server.tick(message)
 
+    # ------------------------------------------------------------ parameters, graph
+
+    def _parameters(self, msg):
+        """Return the server's parameters; raise ParameterError when the install has none."""
+        if not self.server.parameters.available:
+            raise ParameterError(f"{msg['op']}: parameters need the rcl_interfaces type "
+                                 'descriptions in the install: build rcl_interfaces with '
+                                 'colcon build --wasm')
+        return self.server.parameters
+
+    def _in_pool(self, op, msg):
+        """Run a parameter request off the reader thread (it waits for the nodes)."""
+        def run():
+            try:
+                op(self, msg)
+            except ParameterError as e:
+                self.status(wire.ERROR, str(e), msg.get('id'))
+            except Exception as e:  # noqa: B902 (a thread of the pool: say it, keep serving)
+                logger.warning(f"serve --foxglove: {msg['op']} failed: {e}")
+                self.status(wire.ERROR, f"{msg['op']} failed: {e}", msg.get('id'))
+        self.server.requests.submit(run)
+
+    def _op_getParameters(self, msg):
+        self._in_pool(self._parameters(msg).get_parameters, msg)
+
+    def _op_setParameters(self, msg):
+        self._in_pool(self._parameters(msg).set_parameters, msg)
+
+    def _op_subscribeParameterUpdates(self, msg):
+        self._parameters(msg).subscribe(self, msg)
+
+    def _op_unsubscribeParameterUpdates(self, msg):
+        self.server.parameters.unsubscribe(self, msg)
+
+    def _op_subscribeConnectionGraph(self, msg):
+        self.server.graph.subscribe(self)
+
+    def _op_unsubscribeConnectionGraph(self, msg):
+        self.server.graph.unsubscribe(self)
+
     def forget_channels(self, ids):
         """Unadvertise channels that left the graph (their subscriptions end)."""
         self.send_json(op='unadvertise', channelIds=ids)
@@ -518,6 +568,8 @@ class FoxgloveSession:
             self._ready.notify()
         for topic in topics:
             self.server.want(topic, False)
+        self.server.parameters.forget(self)
+        self.server.graph.unsubscribe(self)
 
 
 class _FoxgloveRequestHandler(BaseHTTPRequestHandler):

@@ -28,8 +28,9 @@ roslibpy) that connect to the ``--rosbridge`` port, as one graph:
   ``action_result`` are routed the same way between action client and the
   client that advertised the action;
 * the rosapi services are answered from what the clients advertised,
-  subscribed and (colcon-wasm clients) reported of their nodes
-  (``colcon_wasm_graph``), and from the install space's type descriptions.
+  subscribed and (colcon-wasm clients) reported of their nodes and of which
+  node holds which endpoint (``colcon_wasm_graph``), and from the install
+  space's type descriptions.
 
 Requests are JSON text or CBOR (binary). Bad input gets a ``status`` error
 naming the field, with the request's id; a client that stops reading is cut
@@ -121,6 +122,7 @@ class Peer:
         self.subscriptions = {}   # topic -> relay_topics.Subscription
         self.publications = {}    # topic -> type
         self.nodes = []
+        self.endpoints = {}       # node -> {'publishing', 'subscribing', 'services'}: names
         self.fragments = {}
         self.version = 0          # a colcon-wasm client's (colcon_wasm_graph), else 0
         self.forms = {}           # topic -> (json, cdr) last asked of this colcon-wasm publisher
@@ -143,6 +145,18 @@ class Peer:
     def label(self):
         """The node names it stands for in rosapi answers."""
         return self.nodes or [f'/rosbridge_relay/client_{self.number}']
+
+    def holders(self, kind, name):
+        """
+        Name the nodes of this client that hold an endpoint.
+
+        :param kind: ``publishing``, ``subscribing`` or ``services``
+        :returns: the nodes whose reported endpoints have ``name``; the
+          client's label when none does (a third-party client, an older
+          colcon-wasm one, or a graph not reported yet)
+        """
+        nodes = [n for n, e in self.endpoints.items() if name in e[kind]]
+        return nodes or self.label
 
 
 class Relay:
@@ -309,6 +323,15 @@ class Relay:
         nodes = msg.get('nodes')
         if isinstance(nodes, list):
             peer.nodes = [n for n in nodes if isinstance(n, str)]
+        endpoints = msg.get('endpoints')
+        if isinstance(endpoints, dict):
+            def names(value):
+                return {n for n in value if isinstance(n, str)} if isinstance(value, list) \
+                    else set()
+            peer.endpoints = {
+                node: {kind: names(e.get(kind)) for kind in ('publishing', 'subscribing',
+                                                             'services')}
+                for node, e in endpoints.items() if isinstance(e, dict)}
         version = msg.get('version')
         if isinstance(version, int) and version != peer.version:
             peer.version = version
@@ -654,12 +677,14 @@ class Relay:
             return {'type': entry[1] if entry else ''}
         if name in ('publishers', 'subscribers'):
             topic = full(arg('topic'))
-            table = 'publications' if name == 'publishers' else 'subscriptions'
+            table, kind = ('publications', 'publishing') if name == 'publishers' else (
+                'subscriptions', 'subscribing')
             return {name: sorted({n for p in self.peers if topic in getattr(p, table)
-                                  for n in p.label})}
+                                  for n in p.holders(kind, topic)})}
         if name == 'service_providers':
-            entry = self.services.get(full(arg('service')))
-            return {'providers': entry[0].label if entry else []}
+            service = full(arg('service'))
+            entry = self.services.get(service)
+            return {'providers': entry[0].holders('services', service) if entry else []}
         if name == 'action_servers':
             return {'action_servers': sorted(self.actions)}
         if name == 'message_details':
@@ -671,19 +696,27 @@ class Relay:
 
     def _node_details(self, node):
         """
-        Answer rosapi node_details from the client that stands for ``node`` alone.
+        Answer rosapi node_details: the endpoints of ``node``.
 
-        The relay knows its clients' endpoints, and the nodes each
-        colcon-wasm client reports, not which of a tab's nodes holds which
-        endpoint; so a node of a tab with several nodes (and a node nobody
-        stands for) gets empty lists, not the other nodes' endpoints.
+        A colcon-wasm client reports which of its nodes holds which endpoint
+        (``colcon_wasm_graph`` with ``endpoints``: all of the node's topics and
+        the services it serves, bridged or not, as rosapi lists them). A client
+        that reports none (roslibjs, roslibpy, an older colcon-wasm client)
+        stands for one node, its label: its advertised, subscribed and served
+        names are that node's. A node nobody stands for gets empty lists.
         """
-        alone = [p for p in self.peers if p.label == [node]]
-        return {
-            'subscribing': sorted({t for p in alone for t in p.subscriptions}),
-            'publishing': sorted({t for p in alone for t in p.publications}),
-            'services': sorted(n for n, (p, _) in self.services.items() if p in alone),
-        }
+        out = {'subscribing': set(), 'publishing': set(), 'services': set()}
+        if node == '/rosapi':
+            out['services'] = {f'/rosapi/{n}' for n in ROSAPI}
+        for p in self.peers:
+            if p.endpoints:
+                for kind, names in p.endpoints.get(node, {}).items():
+                    out[kind] |= names
+            elif p.label == [node]:
+                out['subscribing'] |= set(p.subscriptions)
+                out['publishing'] |= set(p.publications)
+                out['services'] |= {n for n, (q, _) in self.services.items() if q is p}
+        return {kind: sorted(names) for kind, names in out.items()}
 
     def _typedefs(self, type_name):
         out, seen = [], set()

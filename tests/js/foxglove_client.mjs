@@ -8,11 +8,13 @@
  * `@foxglove/rosmsg2-serialization` from the schemas the server advertises.
  *
  *   node foxglove_client.mjs demo URL      # the demo talker, listener, add_two_ints_server
- *   node foxglove_client.mjs params URL NODE PARAM VALUE
+ *   node foxglove_client.mjs params URL NODE PARAM VALUE [OTHER_NODE...]  # all parameters once every node has them
  *   node foxglove_client.mjs refused URL   # no subprotocol offered
  *   node foxglove_client.mjs clock URL [ROSBRIDGE_URL]  # publishes /clock (through a rosbridge server when given); a second client gets the time
  *   node foxglove_client.mjs slow URL      # a client that stops reading while a big topic floods
- *   node foxglove_client.mjs relay URL     # serve --foxglove: a page's talker, listener, add_two_ints_server
+ *   node foxglove_client.mjs relay URL     # serve --foxglove: a page's talker, listener, add_two_ints_server, and its graph
+ *   node foxglove_client.mjs paramErrors URL NODE PARAM OTHER_PARAM  # bad parameter requests, unsubscribing
+ *   node foxglove_client.mjs publish URL TOPIC TYPE JSON  # one message (clientPublish, json)
  *   node foxglove_client.mjs assets URL URI...  # fetchAsset of each URI (request ids 1, 2, ...)
  *
  * Prints one JSON line {ok, ...}; every wait is bounded.
@@ -123,11 +125,34 @@ async function demo() {
   });
 }
 
+/** The connection graph a client knows from the updates it got (as Foxglove's Topic Graph keeps it). */
+function followGraph(client) {
+  const graph = { published: {}, subscribed: {}, services: {}, updates: [] };
+  client.on('connectionGraphUpdate', (m) => {
+    graph.updates.push(m);
+    for (const t of m.publishedTopics) graph.published[t.name] = t.publisherIds;
+    for (const t of m.subscribedTopics) graph.subscribed[t.name] = t.subscriberIds;
+    for (const t of m.advertisedServices) graph.services[t.name] = t.providerIds;
+    for (const name of m.removedTopics) { delete graph.published[name]; delete graph.subscribed[name]; }
+    for (const name of m.removedServices) delete graph.services[name];
+  });
+  client.subscribeConnectionGraph();
+  return graph;
+}
+
+const copy = (graph) => JSON.parse(JSON.stringify({ published: graph.published, subscribed: graph.subscribed, services: graph.services }));
+
 async function relay() {
   const state = connect();
   const { client } = state;
   await until('serverInfo', () => state.info);
   const chatter = await until('the /chatter channel', () => state.channels.get('/chatter'), 40000);
+  // the page's nodes by name, then the listener leaving (the page stops it once it heard us)
+  const graph = followGraph(client);
+  const has = (list, node) => (list || []).includes(node);
+  await until('the page nodes in the connection graph', () => has(graph.published['/chatter'], '/talker')
+    && has(graph.subscribed['/chatter'], '/listener') && has(graph.services['/add_two_ints'], '/add_two_ints_server'), 20000);
+  const graphBefore = copy(graph);
   const reader = new MessageReader(parse(chatter.schema, { ros2: true }));
   const heard = [];
   client.on('message', (m) => heard.push(reader.readMessage(new Uint8Array(m.data.buffer, m.data.byteOffset, m.data.byteLength))));
@@ -148,6 +173,8 @@ async function relay() {
   }
   client.sendMessage(cdrId, new Uint8Array([0, 1, 0, 0]));
   await until('the refusal of cdr', () => state.status.length >= 4);
+  await until('the listener leaving the connection graph', () => !has(graph.subscribed['/chatter'], '/listener'), 30000);
+  const graphAfter = copy(graph);
   const sumJson = await callService(state, '/add_two_ints', { a: 5, b: 6 }, 'json', 8);
   const service = state.services.get('/add_two_ints');
   const cdrRefused = await reply(client, 'serviceCallFailure', (m) => m.callId === 9,
@@ -158,25 +185,30 @@ async function relay() {
   const sdk = connect('foxglove.sdk.v1');
   await until('serverInfo over foxglove.sdk.v1', () => sdk.info && sdk.channels.get('/chatter'));
   sdk.ws.close();
+  // the last call: the page waits for it before it closes
+  const last = await callService(state, '/add_two_ints', { a: 4242, b: 1 }, 'json', 11);
   done({
     ok: true, info: state.info, channel: chatter, heard: heard.slice(0, 5), echoed, status: state.status, sumJson,
-    cdrRefused, missing, service, sdkProtocol: sdk.ws.protocol, protocol: state.ws.protocol,
+    cdrRefused, missing, service, sdkProtocol: sdk.ws.protocol, protocol: state.ws.protocol, last,
+    graphBefore, graphAfter, firstGraph: graph.updates[0],
   });
 }
 
 async function params() {
-  const [node, param, value] = rest;
+  const [node, param, value, ...others] = rest;
   const state = connect();
   const { client } = state;
   await until('serverInfo', () => state.info);
   // /parameter_events (nested types: Time, Parameter, ParameterValue), decoded from its schema
-  const eventsChannel = await until('the /parameter_events channel', () => state.channels.get('/parameter_events'));
+  const eventsChannel = await until('the /parameter_events channel', () => state.channels.get('/parameter_events'), 40000);
   const eventReader = new MessageReader(parse(eventsChannel.schema, { ros2: true }));
   const events = [];
   client.on('message', (m) => events.push(eventReader.readMessage(new Uint8Array(m.data.buffer, m.data.byteOffset, m.data.byteLength))));
   client.subscribe(eventsChannel.id);
   await new Promise((r) => setTimeout(r, 300));
   const name = `${node}.${param}`;
+  // the nodes' parameter services are on the graph (advertised as services too)
+  for (const n of [node, ...others]) await until(`the service ${n}/get_parameters`, () => state.services.get(`${n}/get_parameters`), 40000);
   const all = await reply(client, 'parameterValues', (m) => m.id === 'all', () => client.getParameters([], 'all'), 'all parameters');
   const before = await reply(client, 'parameterValues', (m) => m.id === 'get', () => client.getParameters([name], 'get'), name);
   const updates = [];
@@ -194,6 +226,64 @@ async function params() {
     ok: true, info: state.info, all: all.parameters.map((p) => p.name), before: before.parameters, after: after.parameters,
     updates, status: state.status,
   });
+}
+
+/**
+ * Bad parameter requests get an error status with their id, and the
+ * connection stays; a name unsubscribed from gets no more updates.
+ */
+async function paramErrors() {
+  const [node, param, other] = rest;
+  const state = connect();
+  const { client } = state;
+  await until('serverInfo', () => state.info);
+  const values = [];
+  client.on('parameterValues', (m) => values.push(m));
+  const answer = (id) => until(`parameterValues ${id}`, () => values.find((m) => m.id === id), 10000);
+  const statusOf = (id) => until(`a status for ${id}`, () => state.status.find((m) => m.id === id), 10000);
+  const name = `${node}.${param}`;
+  const otherName = `${node}.${other}`;
+  const out = {};
+  client.getParameters(['/nobody_here.rate'], 'unknown');
+  out.unknown = { status: await statusOf('unknown'), values: await answer('unknown') };
+  client.getParameters(['no_dot_here'], 'bad-name');
+  out.badName = await statusOf('bad-name');
+  client.setParameters([{ name, value: { an: 'object' } }], 'bad-value');
+  out.badValue = await statusOf('bad-value');
+  client.setParameters([{ name: otherName, value: 'not an integer' }], 'refused');
+  out.refused = { status: await statusOf('refused'), values: await answer('refused') };
+  state.ws.send(JSON.stringify({ op: 'getParameters', parameterNames: 'not a list', id: 'not-a-list' }));
+  out.notAList = await statusOf('not-a-list');
+  client.getParameters([name], 'still-up');
+  out.stillUp = await answer('still-up');
+  // updates: both names watched, then one unsubscribed; set it, then the other: the
+  // other's update comes after the first's would have (one node, one /parameter_events)
+  const updates = [];
+  client.on('parameterValues', (m) => { if (m.id === undefined) updates.push(...m.parameters); });
+  client.subscribeParameterUpdates([name, otherName]);
+  client.setParameters([{ name, value: 'watched' }], 'set-watched');
+  await answer('set-watched');
+  await until(`an update of ${name}`, () => updates.some((p) => p.name === name && p.value === 'watched'), 10000);
+  client.unsubscribeParameterUpdates([name]);
+  client.setParameters([{ name, value: 'not watched' }], 'set-unwatched');
+  out.setUnwatched = await answer('set-unwatched');
+  client.setParameters([{ name: otherName, value: 250 }], 'set-other');
+  await answer('set-other');
+  await until(`an update of ${otherName}`, () => updates.some((p) => p.name === otherName), 10000);
+  out.updates = updates;
+  done({ ok: true, info: state.info, ...out, status: state.status });
+}
+
+/** Publish one JSON message on a channel of our own, once the server has greeted us. */
+async function publish() {
+  const [topic, schemaName, json] = rest;
+  const state = connect();
+  await until('serverInfo', () => state.info);
+  const id = state.client.advertise({ topic, encoding: 'json', schemaName });
+  state.client.sendMessage(id, new TextEncoder().encode(json));
+  state.ws.close();
+  await new Promise((r) => state.ws.on('close', r));
+  done({ ok: true, status: state.status });
 }
 
 async function refused() {
@@ -311,5 +401,5 @@ async function assets() {
   done({ ok: true, capabilities: state.info.capabilities, responses, status: state.status });
 }
 
-({ demo, params, refused, slow, clock, relay, assets }[mode] || (() => done({ ok: false, error: `unknown mode ${mode}` })))()
+({ demo, params, paramErrors, publish, refused, slow, clock, relay, assets }[mode] || (() => done({ ok: false, error: `unknown mode ${mode}` })))()
   .catch((e) => done({ ok: false, error: e.stack }));

@@ -126,7 +126,8 @@ export class Catalog {
 
 /**
  * The connection graph as Foxglove's connectionGraphUpdate carries it:
- * {topic: [node, ...]} of publishers and subscribers, {service: [node, ...]}.
+ * {topic: [node, ...]} of publishers and subscribers (both with every
+ * topic, empty when it has none), {service: [node, ...]}.
  */
 export function connectionGraph(graph) {
   const published = new Map();
@@ -140,6 +141,12 @@ export function connectionGraph(graph) {
     for (const e of n.publishers) add(published, e.name, n.fqn);
     for (const e of n.subscriptions) add(subscribed, e.name, n.fqn);
     for (const e of n.services) add(services, e.name, n.fqn);
+  }
+  // as foxglove_bridge: every topic has both lists, so a topic whose last
+  // subscriber (or publisher) left is sent with an empty one
+  for (const name of [...published.keys(), ...subscribed.keys()]) {
+    if (!published.has(name)) published.set(name, []);
+    if (!subscribed.has(name)) subscribed.set(name, []);
   }
   return { published, subscribed, services };
 }

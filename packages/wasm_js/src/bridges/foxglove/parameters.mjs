@@ -99,6 +99,24 @@ export class Parameters {
       && n.services.some((s) => s.name === `${n.fqn}/get_parameters`)).map((n) => n.fqn);
   }
 
+  /** Group `/node.param` names (or {name} objects) by node; a node the graph lacks is an error. */
+  _byNode(items, what, errors) {
+    const present = new Set(this._nodesWithParameters());
+    const byNode = new Map();
+    for (const item of items) {
+      const [node, param] = splitName(typeof item === 'string' ? item : item.name);
+      if (!present.has(node)) {
+        if (!byNode.has(node)) errors.push(`cannot ${what} the parameters of ${node}: no node ${node} with parameter services is on the graph`);
+        byNode.set(node, null);
+      } else if (byNode.get(node) !== null) {
+        if (!byNode.has(node)) byNode.set(node, []);
+        byNode.get(node).push([param, item]);
+      }
+    }
+    for (const [node, list] of byNode) if (list === null) byNode.delete(node);
+    return byNode;
+  }
+
   /**
    * Values of parameters; no names: every parameter of every node.
    * @returns {Promise<{parameters: object[], errors: string[]}>}
@@ -115,11 +133,7 @@ export class Parameters {
         }
       }));
     } else {
-      for (const name of names) {
-        const [node, param] = splitName(name);
-        if (!byNode.has(node)) byNode.set(node, []);
-        byNode.get(node).push(param);
-      }
+      for (const [node, list] of this._byNode(names, 'get', errors)) byNode.set(node, list.map(([param]) => param));
     }
     const parameters = [];
     await Promise.all([...byNode].map(async ([node, params]) => {
@@ -143,13 +157,11 @@ export class Parameters {
    * @returns {Promise<string[]>}
    */
   async set(parameters) {
-    const byNode = new Map();
-    for (const p of parameters) {
-      const [node, param] = splitName(p.name);
-      if (!byNode.has(node)) byNode.set(node, []);
-      byNode.get(node).push({ name: param, value: toRcl(p) });
-    }
     const errors = [];
+    const byNode = new Map();
+    for (const [node, list] of this._byNode(parameters, 'set', errors)) {
+      byNode.set(node, list.map(([param, p]) => ({ name: param, value: toRcl(p) })));
+    }
     await Promise.all([...byNode].map(async ([node, list]) => {
       try {
         const response = await this._client(node).request('SetParameters', { parameters: list });

@@ -87,6 +87,9 @@ export class FoxgloveServer {
     const tools = await this.runtime.tools();
     this.link = await BusLink.create({ runtime: this.runtime, tools, nodeName: 'foxglove_bridge' });
     this.parameters = new Parameters(this.link, this.registry);
+    // from the start, not at a client's first subscribeParameterUpdates: a change made
+    // right after it would come before the subscription is made
+    if (this.parameters.available) this.watchParameters();
     this.runtime.onGraphChange(() => this._graphChanged());
     this.port = await listen(this.http, {
       host: this.host, port: this.port, option: '--foxglove', other: 'another Foxglove server or foxglove_bridge', ErrorClass: FoxgloveError,
@@ -194,7 +197,7 @@ export class FoxgloveServer {
     this.log('info', '/clock is published: clients connecting from now on get the time capability');
   }
 
-  /** Follow /parameter_events for the clients that subscribed to parameter updates. */
+  /** Follow /parameter_events for the clients that subscribe to parameter updates. */
   watchParameters() {
     if (this._paramWatch) return;
     this._paramWatch = this.parameters.watch((changed) => {

@@ -273,7 +273,7 @@ export class Session {
   async op_getParameters(msg) {
     const names = list(msg, 'parameterNames', 'parameter names (/node.param)');
     const { parameters, errors } = await this._parameters().get(names);
-    for (const e of errors) this.status(StatusLevel.WARNING, e);
+    for (const e of errors) this.status(StatusLevel.ERROR, `getParameters: ${e}`, typeof msg.id === 'string' ? msg.id : undefined);
     const out = { op: 'parameterValues', parameters };
     if (msg.id !== undefined) out.id = msg.id;
     this.sendJson(out);
@@ -283,7 +283,7 @@ export class Session {
     const params = list(msg, 'parameters', '{name, value}');
     const p = this._parameters();
     const errors = await p.set(params);
-    for (const e of errors) this.status(StatusLevel.ERROR, e, typeof msg.id === 'string' ? msg.id : undefined);
+    for (const e of errors) this.status(StatusLevel.ERROR, `setParameters: ${e}`, typeof msg.id === 'string' ? msg.id : undefined);
     if (msg.id !== undefined) {
       const { parameters } = await p.get(params.map((x) => x.name));
       this.sendJson({ op: 'parameterValues', parameters, id: msg.id });
@@ -293,7 +293,7 @@ export class Session {
   op_subscribeParameterUpdates(msg) {
     this._parameters();
     for (const n of list(msg, 'parameterNames', 'parameter names')) this.parameterNames.add(n);
-    this.server.watchParameters();
+    this.server.watchParameters(); // followed from the start; again if that failed
   }
 
   op_unsubscribeParameterUpdates(msg) {

@@ -26,9 +26,14 @@
  * The bridge's own endpoints belong to the `/rosbridge_client` node (the
  * remote side shows up there in the local graph views); `/rosout`,
  * `/parameter_events`, the rcl parameter services and hidden names are not
- * bridged unless `allow` names them; `deny` leaves out more. A message that
- * comes back from the remote side (our own publish, echoed to our
- * subscription of the same topic) is recognised by its bytes and dropped.
+ * bridged unless `allow` names them; `deny` leaves out more. To serve's
+ * relay, the local nodes' parameter services are advertised and
+ * `/parameter_events` is published (not subscribed), so that its clients
+ * (serve --foxglove) get and set parameters and hear their changes; and the
+ * client reports which local node holds which endpoint (`colcon_wasm_graph`
+ * with `endpoints`), so that the relay's rosapi names nodes exactly. A
+ * message that comes back from the remote side (our own publish, echoed to
+ * our subscription of the same topic) is recognised by its bytes and dropped.
  *
  * Disconnected (or while the socket is backed up), what local publishers
  * send waits: KEEP_LAST keeps the last `depth` messages, RELIABLE KEEP_ALL
@@ -282,10 +287,16 @@ export class RosbridgeClient {
 
   // ----------------------------------------------------------- what to bridge
 
-  _bridged(name) {
+  /**
+   * Is a name bridged in this direction: `out` (local publishers), `in`
+   * (local subscribers), `served` (local servers), `proxied` (local callers)?
+   */
+  _bridged(name, direction) {
     if (this.deny && this.deny.allows('subscribe', name)) return false;
     if (this.allow && this.allow.allows('subscribe', name)) return true;
-    if (DEFAULT_SKIP.has(name) || PARAMETER_SERVICES.test(name)) return false;
+    if (PARAMETER_SERVICES.test(name)) return this.relay && direction === 'served';
+    if (name === '/parameter_events') return this.relay && direction === 'out';
+    if (DEFAULT_SKIP.has(name)) return false;
     return !name.split('/').some((part) => part.startsWith('_'));
   }
 
@@ -304,22 +315,21 @@ export class RosbridgeClient {
     const wantOut = new Map();
     const wantIn = new Map();
     for (const t of raw.topics) {
-      if (!this._bridged(t.name)) continue;
-      const pubs = t.publishers.filter((e) => !mine(e));
-      const subs = t.subscriptions.filter((e) => !mine(e));
+      const pubs = this._bridged(t.name, 'out') ? t.publishers.filter((e) => !mine(e)) : [];
+      const subs = this._bridged(t.name, 'in') ? t.subscriptions.filter((e) => !mine(e)) : [];
       if (pubs.length && this.registry.has(pubs[0].type)) wantOut.set(t.name, { type: pubs[0].type, publishers: pubs });
       if (subs.length && this.registry.has(subs[0].type)) wantIn.set(t.name, { type: subs[0].type });
     }
     const wantServed = new Map();
     const wantProxied = new Map();
     for (const s of raw.services) {
-      if (!this._bridged(s.name)) continue;
       const servers = s.servers.filter((e) => !mine(e));
       const clients = s.clients.filter((e) => !mine(e));
       const type = (servers[0] || clients[0] || {}).type;
       if (!type || !this.registry.services.has(type)) continue;
-      if (servers.length) wantServed.set(s.name, { type });
-      else if (clients.length) wantProxied.set(s.name, { type });
+      if (servers.length) {
+        if (this._bridged(s.name, 'served')) wantServed.set(s.name, { type });
+      } else if (clients.length && this._bridged(s.name, 'proxied')) wantProxied.set(s.name, { type });
     }
     const wantActionsServed = new Map();
     const wantActionsProxied = new Map();

@@ -253,6 +253,7 @@ export class ClientTopics {
     if ((version < 2) !== wasJsonOnly) for (const b of this.in.values()) this._subscribe(b);
     this._reported = null; // on every greeting: a reconnected relay has forgotten our nodes
     this._reportGraph();
+    this._scheduleSync(); // the relay gets the parameter services and /parameter_events too
   }
 
   /** `{"op": "colcon_wasm_forms", "topic", "json", "cdr"}`: what the relay needs of a topic we publish. */
@@ -261,14 +262,23 @@ export class ClientTopics {
     this.forms.set(msg.topic, { json: msg.json === true, cdr: msg.cdr === true });
   }
 
+  /**
+   * Tell the relay our nodes and which of them holds which endpoint:
+   * `{"op": "colcon_wasm_graph", "nodes", "endpoints": {node: {publishing,
+   * subscribing, services}}, "version": 2}` (all of each node's topics and
+   * the services it serves, bridged or not, as rosapi's node_details lists them).
+   */
   _reportGraph() {
     if (!this.relay || !this.connected) return;
-    const nodes = this.link.rawGraph().nodes.map((n) => `${n.namespace === '/' ? '' : n.namespace}/${n.name}`)
-      .filter((fqn) => !BRIDGE_NODES.has(fqn)).sort();
-    const key = nodes.join('\n');
+    const nodes = this.link.graph().nodes.filter((n) => !BRIDGE_NODES.has(n.fqn));
+    const names = (list) => list.map((e) => e.name);
+    const endpoints = Object.fromEntries(nodes.map((n) => [n.fqn, {
+      publishing: names(n.publishers), subscribing: names(n.subscriptions), services: names(n.services),
+    }]));
+    const key = JSON.stringify(endpoints);
     if (key === this._reported) return;
     this._reported = key;
-    this._send({ op: 'colcon_wasm_graph', nodes, version: 2 });
+    this._send({ op: 'colcon_wasm_graph', nodes: nodes.map((n) => n.fqn), endpoints, version: 2 });
   }
 
   _remotePublish(msg) {
