@@ -36,6 +36,7 @@ export const RCLPY_FILES = Object.freeze([
   'rclpy/time.py',
   'rclpy/time_source.py',
   'rclpy/topic_endpoint_info.py',
+  'rclpy/utilities.py',
 ]);
 
 /**
