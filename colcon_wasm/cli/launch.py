@@ -47,7 +47,8 @@ def add_runtime_arguments(parser):
     parser.add_argument(
         '--python', action='append', default=[], metavar='FILE',
         help='Run a Python script as a node (rclpy in Pyodide) next to the others '
-             '(repeatable; docs/python.md)')
+             "(repeatable); its arguments go in the same word: --python 'talker.py "
+             "--ros-args -p rate:=2' (docs/python.md)")
     parser.add_argument(
         '--pyodide', metavar='DIR',
         help='The Pyodide npm package folder for --python (default: $COLCON_WASM_PYODIDE, '

@@ -105,6 +105,8 @@ def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, com
         resolve_gateway_module(description, install_space)
         if python:
             _add_python_nodes(description, python, install_space, bases)
+            # run's one process reads standard input, a Python node too (input(), a console)
+            description['stdin'] = bool(stdin) and len(description['processes']) == 1
         if not print_plan and any(p.get('python') for p in description['processes']):
             # scripts of --python, and entry points of Python packages
             from colcon_wasm.launch.python_nodes import find_pyodide

@@ -6,7 +6,10 @@ Python nodes of ``run --python`` and ``launch --python``: scripts that Pyodide r
 
 Each becomes a process of the plan with ``python`` (the script) instead of
 an executable; the Node host starts it with the runtime's
-``python/spawn.mjs``. Pyodide is not part of the wheel: it is the npm
+``python/spawn.mjs``. A ``--python`` value is the script, or the script
+and its arguments as one shell-quoted word (``--python 'talker.py
+--ros-args -p rate:=2'``, :func:`split_python_value`); they become the
+script's ``sys.argv[1:]``. Pyodide is not part of the wheel: it is the npm
 package ``pyodide`` at :data:`PYODIDE_VERSION`, found by
 :func:`find_pyodide` (``colcon-wasm doctor`` says how to install it).
 See docs/python.md.
@@ -15,6 +18,7 @@ See docs/python.md.
 import json
 import os
 from pathlib import Path
+import shlex
 
 from colcon_wasm.launch.errors import LaunchError
 from colcon_wasm.launch.install_view import program_environment
@@ -72,24 +76,54 @@ def find_pyodide(option=None):
     return folder
 
 
-def python_processes(files, prefixes, *, first_index):
+def split_python_value(value):
+    """
+    Split a ``--python`` value into the script and its arguments.
+
+    A value that names a file as a whole is the script alone (a path with
+    spaces); else it is split as a shell splits words, and the first word
+    is the script.
+
+    :returns: ``(script, [arguments])``
+    :raises LaunchError: for quotes that do not close, or an empty value
+    """
+    if Path(value).is_file():
+        return value, []
+    try:
+        words = shlex.split(value)
+    except ValueError as e:
+        raise LaunchError(f'--python {value!r}: {e} (the value is the script, then its '
+                          "arguments, quoted as in a shell: --python 'talker.py --ros-args "
+                          "-p rate:=2')") from e
+    if not words:
+        raise LaunchError('--python needs a script (--python FILE, or '
+                          "--python 'FILE ARGS...')")
+    return words[0], words[1:]
+
+
+def python_processes(scripts, prefixes, *, first_index):
     """
     Describe the Python nodes for the Node host, labelled ``<stem>-N`` after the others.
 
-    :param files: the scripts
+    :param scripts: the ``--python`` values (:func:`split_python_value`), or
+      ``(script, [arguments])`` pairs
     :param prefixes: the ``AMENT_PREFIX_PATH`` entries the processes see
     :raises LaunchError: for a script that is not a file
     """
     entries = []
-    for index, file in enumerate(files, start=first_index):
+    for index, script in enumerate(scripts, start=first_index):
+        value = isinstance(script, (str, os.PathLike))
+        file, arguments = split_python_value(str(script)) if value else script
         path = Path(file).resolve()
         if not path.is_file():
-            raise LaunchError(f"Python node '{file}' does not exist")
+            given = f' (from --python {str(script)!r}: the script, then its arguments)' \
+                if value and arguments else ''
+            raise LaunchError(f"Python node '{file}' does not exist{given}")
         entries.append({
             'label': f'{path.stem}-{index}',
             'python': str(path),
             'js': str(path),
-            'args': [],
+            'args': [str(a) for a in arguments],
             'env': program_environment({}, prefixes),
         })
     return entries

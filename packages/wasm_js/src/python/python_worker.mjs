@@ -114,9 +114,13 @@ const WAIT_KINDS = {
   subscription: WaitKind.SUBSCRIPTION, service: WaitKind.SERVICE, client: WaitKind.CLIENT, event: WaitKind.EVENT,
 };
 
-/** The `_colcon_wasm_bus` module: what rclpy calls (plain values in, plain values out). */
-function busModule(client, registry, context, settle) {
-  const dummyHeap = new Int32Array(new SharedArrayBuffer(16));
+/**
+ * The `_colcon_wasm_bus` module: what rclpy calls (plain values in, plain values out).
+ * `stdinPipe`: the process' standard input when it has one (the page's console), else null.
+ */
+function busModule(client, registry, context, settle, stdinPipe) {
+  // the memory of a 'graph' wait item (a graph guard condition at byte 0)
+  const graphWord = new Int32Array(new SharedArrayBuffer(16));
   let items = new Int32Array(0);
   return {
     create_node(name, namespace, domain) {
@@ -203,11 +207,16 @@ function busModule(client, registry, context, settle) {
     assert_liveliness(ep) {
       client.assertLiveliness(ep);
     },
+    /** The bus' graph version (every graph change bumps it). */
+    graph_version() {
+      return client.graphVersion();
+    },
     /**
      * Block until one of the endpoints has something to take or the timeout
      * passes (< 0: forever). `kinds`: 'subscription', 'service', 'client'
-     * or 'event', one per handle; `eventTypes`: the EventType of each 'event' (0 for
-     * the others). Returns the ready flags, one per handle.
+     * or 'event', one per handle, or 'graph' (one at most: ready once the graph
+     * version differs from its `eventTypes` entry); `eventTypes`: the EventType
+     * of each 'event' (0 for the others). Returns the ready flags, one per handle.
      */
     wait(handles, kinds, timeoutMs, eventTypes) {
       const list = Array.from(handles);
@@ -215,13 +224,20 @@ function busModule(client, registry, context, settle) {
       const types = eventTypes ? Array.from(eventTypes) : [];
       const n = list.length;
       if (items.length < n * WAIT_ITEM_WORDS) items = new Int32Array(n * WAIT_ITEM_WORDS);
+      graphWord.fill(0);
       for (let i = 0; i < n; i++) {
         const o = i * WAIT_ITEM_WORDS;
-        const kind = WAIT_KINDS[kindList[i]];
+        const graph = kindList[i] === 'graph';
+        const kind = graph ? WaitKind.GUARD_CONDITION : WAIT_KINDS[kindList[i]];
         if (kind === undefined) throw new TypeError(`wait: unknown item kind ${JSON.stringify(kindList[i])}`);
+        if (graph) {
+          // rcl's graph guard condition (client/wait.mjs): word 0 says "graph", word 2 the version seen
+          graphWord[0] = 1;
+          graphWord[2] = types[i] || 0;
+        }
         items[o] = kind;
-        items[o + 1] = list[i];
-        items[o + 2] = types[i] || 0;
+        items[o + 1] = graph ? 0 : list[i];
+        items[o + 2] = graph ? 0 : types[i] || 0;
         items[o + 3] = 0;
       }
       if (n === 0) {
@@ -233,7 +249,7 @@ function busModule(client, registry, context, settle) {
         client.unregister();
         return [];
       }
-      client.wait(items, 0, n, timeoutMs, dummyHeap);
+      client.wait(items, 0, n, timeoutMs, graphWord);
       const ready = [];
       for (let i = 0; i < n; i++) ready.push(items[i * WAIT_ITEM_WORDS + 3] !== 0);
       return ready;
@@ -265,6 +281,10 @@ function busModule(client, registry, context, settle) {
     has_type(type) {
       return registry.has(type);
     },
+    /** Whether a read of standard input would return now: bytes or its end are there. */
+    stdin_ready() {
+      return !!stdinPipe && (stdinPipe.available() > 0 || stdinPipe.closed());
+    },
     log,
   };
 }
@@ -281,6 +301,7 @@ def _colcon_wasm_run(file, source, args, env):
     os.environ.update(env)
     sys.path.insert(0, os.path.dirname(file))
     glb = {'__name__': '__main__', '__file__': file, '__builtins__': __builtins__}
+    code, reason, attached = 0, '', False
     try:
         # rclpy (imported already when Pyodide came from the host's snapshot) takes the bus
         # and puts the finder of the install space's message modules on sys.meta_path:
@@ -288,23 +309,41 @@ def _colcon_wasm_run(file, source, args, env):
         import _colcon_wasm_bus
         import rclpy
         rclpy._attach_to_worker(_colcon_wasm_bus)
+        attached = True
         exec(compile(source, file, 'exec'), glb)
     except SystemExit as e:
-        if e.code is None:
-            return 0, ''
-        if isinstance(e.code, int):
-            return e.code, 'sys.exit({})'.format(e.code) if e.code else ''
-        print(e.code, file=sys.stderr)
-        return 1, str(e.code)
+        code, reason = _exit_status(e)
     except BaseException as e:
-        tb = e.__traceback__.tb_next if e.__traceback__ is not None else None
-        traceback.print_exception(type(e), e, tb)
-        last = traceback.format_exception_only(type(e), e)[-1].strip()
-        return 1, 'Python exception: ' + last
+        code, reason = _report(e)
+    try:
+        # as Python before it exits: the threads that are no daemons (spin threads) end first
+        if attached:
+            import rclpy._threads
+            rclpy._threads.join_spin_threads()
+    except SystemExit as e:
+        code, reason = _exit_status(e)
+    except BaseException as e:
+        code, reason = _report(e)
     finally:
         sys.stdout.flush()
         sys.stderr.flush()
-    return 0, ''
+    return code, reason
+
+
+def _exit_status(e):
+    if e.code is None:
+        return 0, ''
+    if isinstance(e.code, int):
+        return e.code, 'sys.exit({})'.format(e.code) if e.code else ''
+    print(e.code, file=sys.stderr)
+    return 1, str(e.code)
+
+
+def _report(e):
+    tb = e.__traceback__.tb_next if e.__traceback__ is not None else None
+    traceback.print_exception(type(e), e, tb)
+    last = traceback.format_exception_only(type(e), e)[-1].strip()
+    return 1, 'Python exception: ' + last
 `;
 
 async function start(msg) {
@@ -332,9 +371,10 @@ async function start(msg) {
   const { pyodide, fromSnapshot } = await (preloaded || startPyodide(msg));
   pyodide.setStdout({ batched: (line) => log('stdout', line) });
   pyodide.setStderr({ batched: (line) => log('stderr', line) });
-  if (msg.stdin) {
+  const stdinPipe = msg.stdin ? new StdinPipe(msg.stdin) : null;
+  if (stdinPipe) {
     // an open standard input (the page's console): reads block like a terminal's
-    const read = blockingStdinRead(new StdinPipe(msg.stdin), client);
+    const read = blockingStdinRead(stdinPipe, client);
     pyodide.setStdin({ read: (buffer) => read(null, buffer, 0, buffer.length) });
   }
   await writeRclpy(pyodide);
@@ -350,7 +390,8 @@ async function start(msg) {
   // the script at its real path, so that tracebacks show its lines
   pyodide.FS.mkdirTree(msg.file.slice(0, msg.file.lastIndexOf('/')) || '/');
   pyodide.FS.writeFile(msg.file, msg.source);
-  pyodide.registerJsModule('_colcon_wasm_bus', busModule(client, registry, client.createContext(), settle));
+  pyodide.registerJsModule('_colcon_wasm_bus',
+    busModule(client, registry, client.createContext(), settle, stdinPipe));
   pyodide.runPython(`import sys\nsys.path[0:0] = ${JSON.stringify([PYTHON_ROOT, ...(msg.pythonPath || [])])}`);
   pyodide.runPython(RUNNER, { filename: '<colcon-wasm python worker>' });
   const run = pyodide.globals.get('_colcon_wasm_run');

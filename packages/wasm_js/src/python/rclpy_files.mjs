@@ -16,6 +16,7 @@ export const RCLPY_FILES = Object.freeze([
   'rclpy/_messages.py',
   'rclpy/_native_only.py',
   'rclpy/_threads.py',
+  'rclpy/_waiting.py',
   'rclpy/action/__init__.py',
   'rclpy/action/client.py',
   'rclpy/action/server.py',
@@ -35,6 +36,7 @@ export const RCLPY_FILES = Object.freeze([
   'rclpy/time.py',
   'rclpy/time_source.py',
   'rclpy/topic_endpoint_info.py',
+  'rclpy/utilities.py',
 ]);
 
 /**

@@ -31,13 +31,14 @@ def _attach_to_worker(functions):
     rclpy is imported into the host's Pyodide snapshot before a bus exists;
     here it takes the bus functions (``functions``: the worker's
     ``_colcon_wasm_bus``) and the install's type descriptions, and puts its
-    import finders, thread pool and event loop in place.
+    import finders, spin threads, thread pool and event loop in place.
     """
     _bus.attach(functions)
     _messages.load_descriptions(_bus.bus.types_json())
     _messages.install_finder()
     _native_only.install_finder()
     _threads.install_inline_pool()
+    _threads.install_spin_threads()
     _event_loop.install_bus_event_loop()
 
 
@@ -84,7 +85,7 @@ def _global_executor():
 
 
 def spin_once(node, *, executor=None, timeout_sec=None):
-    """Wait for work of ``node`` once and do it."""
+    """Run one callback of ``node`` (or of the executor), waiting at most ``timeout_sec``."""
     executor = executor or _global_executor()
     added = executor.add_node(node)
     try:

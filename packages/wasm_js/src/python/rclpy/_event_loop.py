@@ -23,17 +23,18 @@ loop on first use, as Humble's Python 3.10 does for ``get_event_loop``.
 import asyncio
 import asyncio.events
 
-from rclpy._bus import bus
-from rclpy._bus import handles_to_js
+from rclpy._waiting import sleep_on_bus
 
 
 class _BusSelector:
     """What BaseEventLoop asks of a selector: wait at most ``timeout`` s; no files."""
 
     def select(self, timeout=None):
-        """Sleep on the bus' doorbell for ``timeout`` seconds (None: until it rings)."""
-        bus.wait(handles_to_js([]), handles_to_js([]),
-                 -1 if timeout is None else max(0.0, timeout) * 1000.0)
+        """Sleep on the bus' doorbell for ``timeout`` seconds (None: until it rings).
+
+        The spin threads (rclpy/_threads.py) run meanwhile.
+        """
+        sleep_on_bus(timeout)
         return []
 
     def close(self):

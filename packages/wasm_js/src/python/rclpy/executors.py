@@ -1,14 +1,17 @@
-# Copyright 2026 colcon-wasm contributors
-# Licensed under the Apache License, Version 2.0
-
 """
 Executors: wait for the nodes' entities, then call back; tasks; time.sleep.
 
-A wait blocks the worker in Atomics.wait on the process' doorbell until a
-message arrives, a timer is due or a guard condition was triggered: nothing
-polls. spin_once runs every callback that is ready after one wait (rclpy
-runs one), then resumes the tasks (coroutine callbacks, rclpy.task.Task).
-QoS events (rclpy.qos_event) are items of the same wait.
+As rclpy's: ``spin_once`` runs one callback (or one step of a task), the
+next ready one of the executor's last wait, and waits again when none is
+left; ``wait_for_ready_callbacks`` hands out the same (task, entity, node)
+triples. One wait yields, as rclpy's does, the tasks in progress first
+(newest first), then the QoS events, then per node its timers,
+subscriptions, guard conditions, clients and services, one callback per
+entity (a subscription with three messages is ready at three waits). A
+message or request is taken when its callback runs. A wait blocks the
+worker in Atomics.wait on the process' doorbell until a message arrives,
+a timer is due or a guard condition was triggered: nothing polls
+(rclpy/_waiting.py, which also runs the spin threads meanwhile).
 
 Pyodide has no threads here: MultiThreadedExecutor runs on this one thread,
 and where a thread of rclpy's would block, in ``time.sleep`` inside a
@@ -16,18 +19,21 @@ callback, it runs the other callbacks that are ready meanwhile, except
 those of a busy MutuallyExclusiveCallbackGroup (rclpy.callback_groups).
 So an action's execute callback that sleeps still hears its cancel
 request, as with rclpy's thread pool. Outside of that, ``time.sleep``
-blocks in an Atomics wait (Pyodide's own spins the CPU).
+blocks in an Atomics wait (Pyodide's own spins the CPU), while the spin
+threads (rclpy/_threads.py) run.
 """
 
 import inspect
 import time
 
-from rclpy._bus import bus
-from rclpy._bus import handles_to_js
+from rclpy._waiting import block
+from rclpy._waiting import sleep_on_bus
+from rclpy._waiting import WaitSet
 from rclpy.context import default_context
+from rclpy.task import note_progress
 from rclpy.task import Task
 
-"""The tasks of this process: every executor resumes them (one thread)."""
+"""The tasks of this process, (task, entity, node), oldest first: every executor steps them."""
 _TASKS = []
 """The executors inside a callback, innermost last (for time.sleep)."""
 _DISPATCHING = []
@@ -45,23 +51,27 @@ class TimeoutException(Exception):
     """Nothing was ready in the time given (wait_for_ready_callbacks)."""
 
 
+class ConditionReachedException(Exception):
+    """The condition given to wait_for_ready_callbacks became true."""
+
+
 def create_task(callback, *args, **kwargs):
     """Schedule ``callback(*args, **kwargs)`` (or a coroutine) as a Task; returns it."""
     task = Task(callback, args, kwargs)
-    _TASKS.append(task)
+    _TASKS.append((task, None, None))
     return task
 
 
 def _wait(timeout_sec):
-    """Block for at most ``timeout_sec`` (None: until the doorbell rings)."""
-    bus.wait(handles_to_js([]), handles_to_js([]),
-             -1 if timeout_sec is None else max(0.0, timeout_sec) * 1000.0)
+    """Block for at most ``timeout_sec`` (None: until the doorbell rings); spin threads run."""
+    sleep_on_bus(timeout_sec)
 
 
 def wait_for(subscription, timeout_sec):
     """Block until ``subscription`` has a message, for at most ``timeout_sec``."""
-    bus.wait(handles_to_js([subscription._handle]), handles_to_js(['subscription']),
-             max(0.0, timeout_sec) * 1000.0, handles_to_js([0]))
+    wait_set = WaitSet(max(0.0, timeout_sec))
+    wait_set.add('subscription', subscription._handle)
+    block(wait_set)
 
 
 def sleep_spins():
@@ -75,8 +85,8 @@ def wait_a_while(seconds):
     Let time pass, at most ``seconds``, for a sleep that checks its own end.
 
     In a MultiThreadedExecutor's callback, until the executor's next ready
-    callbacks have run (a message for the sleeper may be among them);
-    elsewhere, nothing else runs meanwhile: the whole ``seconds``.
+    callback has run (a message for the sleeper may be among them);
+    elsewhere, the whole ``seconds``, while the spin threads run.
     """
     if sleep_spins():
         _DISPATCHING[-1].spin_once(timeout_sec=seconds)
@@ -93,10 +103,7 @@ def sleep(seconds):
         left = end - time.monotonic()
         if left <= 0:
             return
-        if sleep_spins():
-            _DISPATCHING[-1].spin_once(timeout_sec=left)
-        else:
-            _wait(left)
+        wait_a_while(left)
 
 
 time.sleep = sleep
@@ -109,7 +116,14 @@ class Executor:
         """Create an executor of ``context`` (default: the default context)."""
         self.context = context or default_context()
         self._nodes = []
-        self._ready = None
+        self._is_shutdown = False
+        # the generator of wait_for_ready_callbacks, reused while its arguments are the same
+        self._cb_iter = None
+        self._last_args = None
+        # True from a wait until the callbacks it found were all handed out
+        self._leftovers = False
+        # how many waits of this executor are on the stack
+        self._waiting = 0
 
     def add_node(self, node):
         """Add a node; returns True when it was not there yet."""
@@ -135,182 +149,291 @@ class Executor:
         return create_task(callback, *args, **kwargs)
 
     def shutdown(self, timeout_sec=None):
-        """Forget the nodes."""
+        """Stop: spin returns, no callback runs any more; the nodes are forgotten."""
+        self._is_shutdown = True
         for node in list(self._nodes):
             self.remove_node(node)
+        self._cb_iter = None
+        self._leftovers = False
         return True
 
     def wake(self):
         """Nothing to wake: the only thread is the caller."""
 
     def spin(self):
-        """Spin until the context is shut down."""
-        while self.context.ok():
+        """Spin until the context or the executor is shut down."""
+        while self.context.ok() and not self._is_shutdown:
             self.spin_once()
 
     def spin_until_future_complete(self, future, timeout_sec=None):
         """Spin until ``future`` is done, or ``timeout_sec`` passed."""
         end = None if timeout_sec is None or timeout_sec < 0 else time.monotonic() + timeout_sec
-        while self.context.ok() and not future.done():
+        while self.context.ok() and not future.done() and not self._is_shutdown:
             left = None if end is None else end - time.monotonic()
             if left is not None and left <= 0:
                 return
-            self.spin_once(timeout_sec=left)
+            self.spin_once_until_future_complete(future, left)
 
     def spin_once_until_future_complete(self, future, timeout_sec=None):
-        """Spin once, unless ``future`` is done."""
+        """Spin once (one callback), unless ``future`` is done."""
         if not future.done():
             self.spin_once(timeout_sec=timeout_sec)
 
     def spin_once(self, timeout_sec=None):
-        """Wait for work (at most ``timeout_sec``; None: until there is some) and do it."""
-        for call, _, _ in self._ready_callbacks(timeout_sec):
-            call()
-        self._resume_tasks()
+        """
+        Run one callback: the next ready one, waiting at most ``timeout_sec`` for it.
 
-    def wait_for_ready_callbacks(self, timeout_sec=None):
+        None or negative: wait until there is one; 0: do not wait. An
+        exception of the callback goes on up from here, as from rclpy's.
+        """
+        try:
+            handler, _, _ = self.wait_for_ready_callbacks(timeout_sec=timeout_sec)
+        except (ShutdownException, TimeoutException, ConditionReachedException):
+            return
+        self._run(handler)
+
+    def _run(self, handler):
+        """Run a handler of this executor; raise its exception."""
+        _DISPATCHING.append(self)
+        try:
+            handler()
+        finally:
+            _DISPATCHING.pop()
+        if handler.exception() is not None:
+            raise handler.exception()
+
+    def wait_for_ready_callbacks(self, timeout_sec=None, nodes=None, condition=None):
         """Return (handler, entity, node) of the next ready callback, as rclpy's does.
 
         ``handler`` is a Task that runs the callback when called (custom
         executors call it, or give it to a pool). One wait yields every
-        callback that is ready then; the next call returns the next of
-        them, and waits again when none is left. TimeoutException when
-        nothing was ready in ``timeout_sec``, ShutdownException when the
-        context was shut down.
+        callback that is ready then; the next call (with the same
+        arguments) returns the next of them, and waits again when none is
+        left. TimeoutException when nothing was ready in ``timeout_sec``,
+        ShutdownException when the executor was shut down,
+        ConditionReachedException when ``condition()`` became true, and
+        ExternalShutdownException when the context was shut down during
+        the wait.
         """
-        end = None if timeout_sec is None or timeout_sec < 0 else time.monotonic() + timeout_sec
+        args = (timeout_sec, nodes, condition)
         while True:
+            if self._cb_iter is None or self._last_args != args:
+                self._last_args = args
+                self._leftovers = False
+                self._cb_iter = self._wait_for_ready_callbacks(timeout_sec, nodes, condition)
+            try:
+                return next(self._cb_iter)
+            except StopIteration:
+                self._cb_iter = None
+
+    def _wait_for_ready_callbacks(self, timeout_sec=None, nodes=None, condition=None):
+        """Yield (handler, entity, node) for each callback ready after one wait (see above)."""
+        condition = condition or (lambda: False)
+        end = None if timeout_sec is None or timeout_sec < 0 else time.monotonic() + timeout_sec
+        yielded = False
+        while not yielded and not self._is_shutdown and not condition():
             if not self.context.ok():
                 raise ShutdownException()
-            if self._ready is None:
-                left = None if end is None else max(0.0, end - time.monotonic())
-                self._ready = self._ready_callbacks(left)
+            nodes_to_use = self._live_nodes(nodes)
+            for task, entity, node in reversed(list(_TASKS)):
+                if task._may_step() and (node is None or node in nodes_to_use):
+                    yielded = True
+                    yield task, entity, node
+            _TASKS[:] = [t for t in _TASKS if not t[0].done()]
+            ready = self._gather(nodes_to_use)
+            left = None if end is None else end - time.monotonic()
+            ready.wait_set.limit(left)
+            self._waiting += 1
             try:
-                call, entity, node = next(self._ready)
-            except StopIteration:
-                self._ready = None
-                if end is not None and time.monotonic() >= end:
-                    raise TimeoutException()
-                continue
-            return Task(call), entity, node
+                flags = block(ready.wait_set)
+            finally:
+                self._waiting -= 1
+            note_progress()
+            if self._is_shutdown:
+                raise ShutdownException()
+            if not self.context.ok():
+                raise ExternalShutdownException()
+            self._leftovers = True
+            for handler in ready.handlers(self, flags):
+                yielded = True
+                yield handler
+            self._leftovers = False
+            if not yielded and end is not None and time.monotonic() >= end:
+                raise TimeoutException()
+        if self._is_shutdown:
+            raise ShutdownException()
+        if condition():
+            raise ConditionReachedException()
 
-    def _ready_callbacks(self, timeout_sec):
-        """Wait once, then yield (call, entity, node) for each callback ready then.
+    def _live_nodes(self, nodes=None):
+        return [n for n in (self._nodes if nodes is None else nodes) if n._handle is not None]
 
-        Lazily: each is taken (a message, a request) when the one before
-        it was run, and only while its callback group lets it start.
-        """
-        self._resume_tasks()
-        may_run = self._may_run
-        nodes = [n for n in self._nodes if n._handle is not None]
-        subscriptions = [(s, n) for n in nodes for s in n.subscriptions
-                         if s._handle is not None and may_run(s)]
-        services = [(s, n) for n in nodes for s in n.services
-                    if s._handle is not None and may_run(s)]
-        clients = [(c, n) for n in nodes for c in n.clients
-                   if c._handle is not None and may_run(c)]
-        timers = [(t, n) for n in nodes for t in n.timers if not t.is_canceled() and may_run(t)]
-        guards = [(g, n) for n in nodes for g in n.guards if g._triggered and may_run(g)]
-        events = [(h, n) for n in nodes for e in n.publishers + n.subscriptions
-                  if e._handle is not None for h in getattr(e, 'event_handlers', ())
-                  if may_run(h)]
-        wait = -1.0 if timeout_sec is None or timeout_sec < 0 else timeout_sec
-        if guards:
-            wait = 0.0
-        lefts = [left for left in (t._seconds_left() for t, _ in timers) if left is not None]
-        if lefts:
-            wait = min(lefts) if wait < 0 else min(wait, min(lefts))
-        timeout_ms = -1 if wait < 0 else wait * 1000.0
-        entities = [e for e, _ in subscriptions + services + clients + events]
-        kinds = (['subscription'] * len(subscriptions) + ['service'] * len(services)
-                 + ['client'] * len(clients) + ['event'] * len(events))
-        event_types = [0] * (len(entities) - len(events)) + [h.event_type for h, _ in events]
-        ready = list(bus.wait(handles_to_js(e._handle for e in entities), handles_to_js(kinds),
-                              timeout_ms, handles_to_js(event_types)))
-        for guard, node in guards:
-            guard._triggered = False
-            yield lambda g=guard: self._call(g, g.callback), guard, node
-        for (subscription, node), flag in zip(subscriptions, ready):
-            while flag and subscription._handle is not None and may_run(subscription):
-                msg = subscription._take()
-                if msg is None:
-                    break
-                yield (lambda s=subscription, m=msg: self._call(s, s.callback, m),
-                       subscription, node)
-        offset = len(subscriptions)
-        for (service, node), flag in zip(services, ready[offset:offset + len(services)]):
-            while flag and service._handle is not None and may_run(service):
-                taken = service._take_request()
-                if taken is None:
-                    break
-                yield (lambda s=service, t=taken: self._call(
-                    s, s.callback, t[0], s.srv_type.Response(),
-                    done=lambda response: s._respond(t[1], response)), service, node)
-        offset += len(services)
-        for (client, _), flag in zip(clients, ready[offset:offset + len(clients)]):
-            # a response completes its future here; the futures' callbacks run as tasks
-            while flag and client._handle is not None and client._take_one():
-                pass
-        offset += len(clients)
-        for (handler, node), flag in zip(events, ready[offset:]):
-            status = handler._take() if flag and handler._handle is not None else None
-            if status is not None:
-                yield (lambda h=handler, st=status: self._call(h, h.callback, st),
-                       handler, node)
-        for timer, node in timers:
-            if timer._due() and may_run(timer):
-                timer._advance()
-                yield lambda t=timer: self._call(t, t.callback), timer, node
+    def _gather(self, nodes):
+        """Return what the next wait is for: the nodes' entities that may run (_Ready)."""
+        return _Ready(nodes, self.can_execute)
 
-    def _may_run(self, entity):
+    def _wait_set(self):
+        """Return what a wait of this executor is for now (for rclpy/_waiting.py's threads)."""
+        if self._is_shutdown or not self.context.ok():
+            return WaitSet()  # its spin returns: nothing to wait for
+        nodes = self._live_nodes()
+        wait_set = self._gather(nodes).wait_set
+        if self._leftovers or any(task._may_step() and (node is None or node in nodes)
+                                  for task, _, node in _TASKS):
+            wait_set.limit(0.0)
+        return wait_set
+
+    def can_execute(self, entity):
+        """Return True when a callback of ``entity`` may be handed out now (as rclpy's)."""
+        if getattr(entity, '_executor_event', False):
+            return False
         group = getattr(entity, 'callback_group', None)
         return group is None or group.can_execute(entity)
 
-    def _call(self, entity, callback, *args, done=None):
-        """Run a callback in its group; a coroutine becomes a task; ``done(result)`` after."""
-        group = getattr(entity, 'callback_group', None)
-        if group is not None and not group.beginning_execution(entity):
-            return
-        _DISPATCHING.append(self)
-        try:
-            result = callback(*args)
-        finally:
-            _DISPATCHING.pop()
-            if group is not None:
-                group.ending_execution(entity)
-        if inspect.iscoroutine(result):
-            task = create_task(result)
-            task._group = (group, entity)
-            if done is not None:
-                task.add_done_callback(lambda t: done(t.result()) if t.exception() is None
-                                       else None)
-            self._step(task)
-        elif done is not None:
-            done(result)
+    def _make_handler(self, entity, node, take, call):
+        """Make the Task of one callback: it takes (a message, ...) and calls back when run."""
+        entity._executor_event = True
 
-    def _step(self, task):
-        group, entity = getattr(task, '_group', (None, None))
-        if group is not None and not group.beginning_execution(entity):
-            return
-        _DISPATCHING.append(self)
-        try:
-            task()
-        finally:
-            _DISPATCHING.pop()
-            if group is not None:
-                group.ending_execution(entity)
+        def handler():
+            try:
+                taken = take(entity)
+            finally:
+                entity._executor_event = False
+            return call(entity, taken)
+        task = Task(handler)
+        task._group = (getattr(entity, 'callback_group', None), entity)
+        _TASKS.append((task, entity, node))
+        return task
 
-    def _resume_tasks(self):
-        """Resume the tasks that are not done and not running; again while that changed any."""
-        for _ in range(100):
-            count = len(_TASKS)
-            pending = [t for t in _TASKS if not t.done() and not t.executing()]
-            for task in pending:
-                self._step(task)
-            changed = len(_TASKS) > count or any(t.done() for t in pending)
-            _TASKS[:] = [t for t in _TASKS if not t.done()]
-            if not changed:
-                break
+
+class _Ready:
+    """The entities of one wait, in rclpy's order, and the handlers of those ready after it."""
+
+    def __init__(self, nodes, can_execute):
+        """Gather the nodes' entities that may run; the wait set for them."""
+        self.nodes = nodes
+        self.wait_set = WaitSet()
+        self.events = [(h, n) for n in nodes for e in n.publishers + n.subscriptions
+                       if e._handle is not None for h in getattr(e, 'event_handlers', ())
+                       if can_execute(h)]
+        self.subscriptions = [s for n in nodes for s in n.subscriptions
+                              if s._handle is not None and can_execute(s)]
+        self.clients = [c for n in nodes for c in n.clients
+                        if c._handle is not None and can_execute(c)]
+        self.services = [s for n in nodes for s in n.services
+                         if s._handle is not None and can_execute(s)]
+        self.timers = [t for n in nodes for t in n.timers
+                       if not t.is_canceled() and can_execute(t)]
+        self.guards = [g for n in nodes for g in n.guards if g._triggered and can_execute(g)]
+        for handler, _ in self.events:
+            self.wait_set.add('event', handler._handle, handler.event_type)
+        for kind, entities in (('subscription', self.subscriptions), ('client', self.clients),
+                               ('service', self.services)):
+            for entity in entities:
+                self.wait_set.add(kind, entity._handle)
+        if self.guards:
+            self.wait_set.limit(0.0)
+        for timer in self.timers:
+            self.wait_set.limit(timer._seconds_left())
+
+    def handlers(self, executor, flags):
+        """Yield (handler, entity, node) of each entity ready after the wait (flags)."""
+        ready = set()
+        for entity, flag in zip([h for h, _ in self.events] + self.subscriptions + self.clients
+                                + self.services, flags):
+            if flag:
+                ready.add(id(entity))
+        make = executor._make_handler
+        for handler, node in self.events:
+            if id(handler) in ready and executor.can_execute(handler) and \
+                    handler._handle is not None:
+                yield make(handler, node, _take_event, _call_event), handler, node
+        for node in self.nodes:
+            for timer in node.timers:
+                if timer in self.timers and timer._due() and executor.can_execute(timer):
+                    yield make(timer, node, _take_timer, _call_timer), timer, node
+            for subscription in node.subscriptions:
+                if id(subscription) in ready and executor.can_execute(subscription) and \
+                        subscription._handle is not None:
+                    yield (make(subscription, node, _take_message, _call_subscription),
+                           subscription, node)
+            for guard in node.guards:
+                if guard in self.guards and guard._triggered and executor.can_execute(guard):
+                    yield make(guard, node, _take_guard, _call_guard), guard, node
+            for client in node.clients:
+                if id(client) in ready and executor.can_execute(client) and \
+                        client._handle is not None:
+                    yield make(client, node, _take_response, _call_client), client, node
+            for service in node.services:
+                if id(service) in ready and executor.can_execute(service) and \
+                        service._handle is not None:
+                    yield make(service, node, _take_request, _call_service), service, node
+
+
+def _take_event(handler):
+    return handler._take() if handler._handle is not None else None
+
+
+def _call_event(handler, status):
+    if status is not None:
+        return handler.callback(status)
+
+
+def _take_timer(timer):
+    if timer.is_canceled() or not timer._due():
+        return False
+    timer._advance()
+    return True
+
+
+def _call_timer(timer, due):
+    if due:
+        return timer.callback()
+
+
+def _take_message(subscription):
+    return subscription._take() if subscription._handle is not None else None
+
+
+def _call_subscription(subscription, msg):
+    if msg is not None:
+        return subscription.callback(msg)
+
+
+def _take_guard(guard):
+    triggered, guard._triggered = guard._triggered, False
+    return triggered
+
+
+def _call_guard(guard, triggered):
+    if triggered and guard.callback is not None:
+        return guard.callback()
+
+
+def _take_response(client):
+    return client._take_response() if client._handle is not None else None
+
+
+def _call_client(client, taken):
+    if taken is not None:
+        client._complete(*taken)
+
+
+def _take_request(service):
+    return service._take_request() if service._handle is not None else None
+
+
+def _call_service(service, taken):
+    """Call back with the request; send what it returns (a coroutine's result when done)."""
+    if taken is None:
+        return None
+    request, request_id = taken
+    result = service.callback(request, service.srv_type.Response())
+    if inspect.iscoroutine(result):
+        async def respond():
+            service._respond(request_id, await result)
+        return respond()
+    service._respond(request_id, result)
 
 
 class SingleThreadedExecutor(Executor):
@@ -324,3 +447,12 @@ class MultiThreadedExecutor(Executor):
         """Create the executor; ``num_threads`` is accepted (one thread runs the callbacks)."""
         super().__init__(context=context)
         self._num_threads = num_threads
+
+    def spin_once_until_future_complete(self, future, timeout_sec=None):
+        """Run one callback; return as soon as ``future`` is done, as rclpy's."""
+        try:
+            handler, _, _ = self.wait_for_ready_callbacks(timeout_sec, None, future.done)
+        except (ShutdownException, TimeoutException, ConditionReachedException,
+                ExternalShutdownException):
+            return
+        self._run(handler)

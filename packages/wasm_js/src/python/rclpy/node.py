@@ -11,6 +11,9 @@ from rclpy import parameter_service
 from rclpy._bus import bus
 from rclpy._bus import plain_to_js
 from rclpy._graph import NodeNameNonExistentError  # noqa: F401 (rclpy's name for it)
+from rclpy._waiting import block
+from rclpy._waiting import runnable_threads
+from rclpy._waiting import WaitSet
 from rclpy.callback_groups import MutuallyExclusiveCallbackGroup
 from rclpy.clock import ROSClock
 from rclpy.context import default_context
@@ -182,18 +185,39 @@ class Client(_ServiceEndpoint):
         return bool(bus.server_available(self._handle))
 
     def wait_for_service(self, timeout_sec=None):
-        """Block until a server is there (sleeping on graph changes); False on timeout."""
-        timeout_ms = -1 if timeout_sec is None or timeout_sec < 0 else timeout_sec * 1000.0
-        return bool(bus.wait_for_server(self._handle, timeout_ms))
+        """Block until a server is there (sleeping on graph changes); False on timeout.
 
-    def _take_one(self):
+        The spin threads (rclpy/_threads.py) run meanwhile.
+        """
+        if timeout_sec is not None and timeout_sec < 0:
+            timeout_sec = None
+        if not runnable_threads():
+            timeout_ms = -1 if timeout_sec is None else timeout_sec * 1000.0
+            return bool(bus.wait_for_server(self._handle, timeout_ms))
+        end = None if timeout_sec is None else time.monotonic() + timeout_sec
+        while True:
+            version = bus.graph_version()
+            if self.service_is_ready():
+                return True
+            left = None if end is None else end - time.monotonic()
+            if left is not None and left <= 0:
+                return False
+            wait_set = WaitSet(left)
+            wait_set.add('graph', 0, version)
+            block(wait_set)
+
+    def _take_response(self):
+        """Take the next response: (its request's sequence number, the response), or None."""
         taken = bus.take_response(self._handle, self._response)
         if taken is None:
-            return False
-        future = self._pending.pop(int(taken.seq), None)
+            return None
+        return int(taken.seq), self.srv_type.Response._from_plain(taken.value.to_py())
+
+    def _complete(self, sequence, response):
+        """Complete the future of the request ``sequence`` (the executor's client callback)."""
+        future = self._pending.pop(sequence, None)
         if future is not None and not future.done():
-            future.set_result(self.srv_type.Response._from_plain(taken.value.to_py()))
-        return True
+            future.set_result(response)
 
 
 class Timer:
@@ -263,9 +287,15 @@ class Timer:
         self.cancel()
 
     def _seconds_left(self):
-        """Return the steady seconds to wait for it, or None (simulated: wait for /clock)."""
+        """Return the steady seconds to wait for it, or None (simulated: wait for /clock).
+
+        A simulated timer that /clock made due is due now (0), as rcl's is
+        ready after the clock's jump.
+        """
         now = self._current()
-        return None if self._simulated else max(0.0, self._next - now)
+        if self._simulated:
+            return 0.0 if now >= self._next else None
+        return max(0.0, self._next - now)
 
     def _due(self):
         return not self._canceled and self._current() >= self._next

@@ -7,9 +7,28 @@ rclpy.task: Future (done, result, exception, callbacks, ``await``) and Task.
 A Task runs a callback that is a coroutine (``async def``) step by step on
 the executor: each ``await`` of a pending Future hands the thread back, and
 the executor resumes the task once per spin until it is done, as rclpy's.
+
+A task's exception is kept in the task (``exception()``), as rclpy's; the
+executor's ``spin_once`` raises it. The executor steps a pending task again
+after something happened since its last step (:func:`progress`: a future
+completed, or an executor's wait returned), as rclpy's executor yields its
+tasks again after each wait: a task that awaits never spins the CPU.
 """
 
 import inspect
+
+"""Counts what may let a pending task go on: completed futures, and executor waits."""
+_progress = [0]
+
+
+def progress():
+    """Return the progress count (see the module's comment)."""
+    return _progress[0]
+
+
+def note_progress():
+    """Count one more thing that may let a pending task go on."""
+    _progress[0] += 1
 
 
 class Future:
@@ -35,6 +54,7 @@ class Future:
         """Cancel a pending future."""
         if not self._done:
             self._cancelled = True
+            note_progress()
             self._run_callbacks()
 
     def result(self):
@@ -51,12 +71,14 @@ class Future:
         """Complete with a result."""
         self._result = result
         self._done = True
+        note_progress()
         self._run_callbacks()
 
     def set_exception(self, exception):
         """Complete with an exception."""
         self._exception = exception
         self._done = True
+        note_progress()
         self._run_callbacks()
 
     def add_done_callback(self, callback):
@@ -89,14 +111,32 @@ class Task(Future):
         self._kwargs = kwargs or {}
         self._coroutine = handler if inspect.iscoroutine(handler) else None
         self._executing = False
+        # (callback group, entity): each step runs inside the group, or waits for it
+        self._group = None
+        # the progress count at the end of the last step (None: never stepped)
+        self._stepped_at = None
 
     def executing(self):
         """Return True while a step of the task runs (it is on the stack)."""
         return self._executing
 
+    def _may_step(self):
+        """Return True when the executor should step the task (something happened since)."""
+        return not self.done() and not self._executing and self._stepped_at != progress()
+
     def __call__(self):
-        """Run the task until it is done or awaits something pending; exceptions propagate."""
+        """
+        Run the task until it is done or awaits something pending.
+
+        An exception of the callback completes the task with it (``exception()``),
+        as rclpy's; a BaseException (SystemExit, ...) goes on up. A task of a
+        callback group steps only while the group lets it start.
+        """
         if self.done() or self._executing:
+            return
+        group, entity = self._group or (None, None)
+        if group is not None and not group.beginning_execution(entity):
+            self._stepped_at = progress()
             return
         self._executing = True
         try:
@@ -110,8 +150,10 @@ class Task(Future):
                 self._coroutine.send(None)
             except StopIteration as e:
                 self.set_result(e.value)
-        except BaseException as e:
+        except Exception as e:  # kept in the task, as rclpy does
             self.set_exception(e)
-            raise
         finally:
             self._executing = False
+            self._stepped_at = progress()
+            if group is not None:
+                group.ending_execution(entity)
