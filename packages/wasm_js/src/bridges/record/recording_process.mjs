@@ -32,23 +32,25 @@ export class RecordingProcess {
   static async start(runtime, { fd, offset, chunkBytes, flushMs, onReport }) {
     const pid = await runtime._allocPid(PROC_KIND_TOOLS);
     const { port1, port2 } = new MessageChannel();
+    const requests = new SharedArrayBuffer(4);
     const worker = new Worker(new URL('./recording_worker.mjs', import.meta.url), {
       name: 'wasm_js recorder',
       workerData: {
-        handle: runtime.bus.handle, pid, control: port2, fd, offset, chunkBytes, flushMs,
+        handle: runtime.bus.handle, pid, control: port2, requests, fd, offset, chunkBytes, flushMs,
         coalesceMs: COALESCE_MS,
       },
       transferList: [port2],
     });
-    return new RecordingProcess(runtime, pid, worker, port1, onReport);
+    return new RecordingProcess(runtime, pid, worker, port1, new Int32Array(requests), onReport);
   }
 
-  constructor(runtime, pid, worker, port, onReport) {
+  constructor(runtime, pid, worker, port, requests, onReport) {
     this.runtime = runtime;
     /** The recording worker's bus process id. */
     this.pid = pid;
     this._worker = worker;
     this._port = port;
+    this._requests = requests;
     this._next = 1;
     this._pending = new Map();
     this._onReport = onReport;
@@ -84,9 +86,15 @@ export class RecordingProcess {
     const id = this._next++;
     return new Promise((resolve, reject) => {
       this._pending.set(id, { resolve, reject });
-      this._port.postMessage({ id, op, args }, transfer);
-      this.runtime.bus.ring(this.pid);
+      this._post({ id, op, args }, transfer);
     });
+  }
+
+  /** Post a request, count it (the worker reads its port only then) and wake the worker. */
+  _post(message, transfer = []) {
+    this._port.postMessage(message, transfer);
+    Atomics.add(this._requests, 0, 1);
+    this.runtime.bus.ring(this.pid);
   }
 
   /** Create the recorder's node. */
@@ -106,7 +114,7 @@ export class RecordingProcess {
   /** Give a posted chunk's records buffer back (pipe mode). */
   recycle(buffer) {
     if (this._ended) return;
-    this._port.postMessage({ id: 0, op: 'recycle', args: { buffer } }, [buffer]);
+    this._post({ id: 0, op: 'recycle', args: { buffer } }, [buffer]);
   }
 
   /**
