@@ -14,12 +14,13 @@
  * carry it (bridges/record/frames.mjs). `file`: the bag's descriptor FD
  * (inherited, the launcher's BagWriter wrote its header up to OFFSET) gets
  * the launcher's Schema/Channel records (RECORDS_FILE) and then every chunk
- * through bridges/record/file_sink.mjs, as the recording worker writes it.
+ * through bridges/record/file_sink.mjs, as the host writes it.
  * A JSON line on stdout lists what was published (topic channel, length,
  * first byte), the messages per chunk and, in file mode, the write reports.
  */
 
 import { readFileSync, writeFileSync } from 'node:fs';
+import zlib from 'node:zlib';
 import path from 'node:path';
 import { pathToFileURL } from 'node:url';
 
@@ -49,14 +50,23 @@ const reports = [];
 let sink = null;
 if (mode === 'file') {
   const [fd, offset, recordsFile] = rest;
-  sink = new FileSink({ fd: Number(fd), offset: Number(offset), onWritten: (r) => reports.push(r) });
+  sink = new FileSink({
+    fd: Number(fd), offset: Number(offset), maxQueuedBytes: 1 << 30,
+    onWritten: (r) => reports.push(r),
+    onFailed: (f) => { throw new Error(`the bag failed: ${f.message}`); },
+  });
   sink.writeRecords(new Uint8Array(readFileSync(recordsFile)));
 }
 const recording = new ChunkBuilder(recorder, {
   chunkBytes: 1 << 20, flushMs: 60000,
   sink: (chunk) => {
     chunks.push(chunk.messages);
-    if (sink) return sink.chunk(chunk);
+    if (sink) {
+      // as the recording worker posts it (a copy: the builder reuses its buffer at once)
+      const records = chunk.records.slice();
+      sink.writeChunk({ ...chunk, records, crc: zlib.crc32(records) }, () => {});
+      return true;
+    }
     frames.push(chunkHead({ ...chunk, length: chunk.records.length }, chunk.records.length + chunk.indexes.length),
       chunk.records.slice(), chunk.indexes);
     return true;
@@ -87,6 +97,7 @@ for (let round = 0; round < 6; round++) {
 }
 recording.drain();
 recording.flush();
+if (sink) await sink.drained();
 if (mode === 'pipe') {
   let size = 0;
   for (const f of frames) size += f.length;

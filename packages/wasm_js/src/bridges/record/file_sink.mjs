@@ -2,14 +2,19 @@
 // Licensed under the Apache License, Version 2.0
 
 /**
- * The bag file, written by the recording worker itself (Node.js, `--record`
- * without compression): each closed chunk goes to the file in one `writev`
- * as its Chunk record (uncompressed, with the CRC-32 of its records) and its
- * MessageIndex records, at the file's shared offset. The launcher wrote the
- * magic and the Header before, writes the summary after, and hands over the
- * Schema and Channel records it builds for each topic (`writeRecords`) so
- * that they reach the file before the first chunk that uses them.
+ * The bag file, written by the Node host itself (`--record` without
+ * compression): each chunk the recording worker closes goes to the file in
+ * one `writev`, as its Chunk record (uncompressed, with the CRC-32 of its
+ * records, which the worker computed) and its MessageIndex records, at the
+ * file's shared offset. The launcher wrote the magic and the Header before,
+ * writes the summary after, and hands over the Schema and Channel records it
+ * builds for each topic (`writeRecords`), which reach the file before the
+ * first chunk that uses them.
  *
+ * Writes are asynchronous (libuv's thread pool) and one at a time, in the
+ * order they were asked for: the recording worker never waits for the
+ * disk, so a slow write does not make it miss messages; what waits is
+ * bounded (`maxQueuedBytes`), beyond it chunks are dropped and counted.
  * No byte of a message is copied on its way from the chunk buffer to the
  * file, and nothing goes through the launcher's pipe but a small report per
  * write (`onWritten`), from which the launcher builds the chunk indexes.
@@ -17,106 +22,140 @@
  * @module bridges/record/file_sink
  */
 
-import { ftruncateSync, writevSync } from 'node:fs';
-import zlib from 'node:zlib';
+import { ftruncate, writev } from 'node:fs';
 
 const OP_CHUNK = 0x06;
 /** opcode, record length, start, end, uncompressed size, CRC, compression length, records length */
 const CHUNK_HEAD = 1 + 8 + 8 + 8 + 8 + 4 + 4 + 8;
-/** Node.js 20.15 and later: the C CRC-32 of zlib; else the records go without one (CRC 0, allowed). */
-const crc32 = typeof zlib.crc32 === 'function' ? zlib.crc32 : null;
-
-/** A write to the bag failed: the file was cut back to its last whole record. */
-export class BagWriteError extends Error {
-  /**
-   * @param {Error} cause the write's error (code ENOSPC, EFBIG, EDQUOT, EIO, ...)
-   * @param {number} kept the length of the file now
-   */
-  constructor(cause, kept) {
-    super(`writing the bag failed: ${cause.message}`);
-    this.name = 'BagWriteError';
-    this.code = cause.code || 'EIO';
-    this.errno = cause.errno;
-    this.kept = kept;
-  }
-}
 
 export class FileSink {
   /**
    * @param {object} options
    * @param {number} options.fd the bag, open for writing at `offset` (the launcher's descriptor)
    * @param {number} options.offset where the next record goes (after the launcher's Header)
+   * @param {number} options.maxQueuedBytes chunks beyond this many bytes waiting are dropped
    * @param {function(object): void} options.onWritten gets a report after each write
+   * @param {function({code: string, message: string, kept: number}): void} options.onFailed
+   *   a write failed: the file was cut back to `kept` bytes, nothing more is written
    */
-  constructor({ fd, offset, onWritten }) {
+  constructor({ fd, offset, maxQueuedBytes, onWritten, onFailed }) {
     this.fd = fd;
+    /** the end of the last whole write */
     this.position = offset;
+    this.maxQueuedBytes = maxQueuedBytes;
     this.onWritten = onWritten;
-    this.head = new Uint8Array(CHUNK_HEAD);
-    this.headView = new DataView(this.head.buffer);
+    this.onFailed = onFailed;
+    this.queue = [];
+    this.queuedBytes = 0;
+    this.writing = false;
     this.failed = null;
+    /** resolves when nothing waits (see `drained`) */
+    this._idle = [];
   }
 
-  /** Write records the launcher built (Schema, Channel): whole, before any chunk using them. */
+  /** Write records the launcher built (Schema, Channel): whole, before any chunk asked for later. */
   writeRecords(bytes) {
-    if (!bytes.length) return;
-    const at = this.position;
-    this._write([bytes]);
-    this.onWritten({ kind: 'records', offset: at, end: this.position });
+    if (!bytes.length || this.failed) return;
+    this._enqueue([bytes], (at) => ({ kind: 'records', offset: at, end: at + bytes.length }));
   }
 
   /**
-   * Write a closed chunk (a ChunkBuilder sink: its buffer is free again on return).
-   * @param {import('./chunk_builder.mjs').ClosedChunk} chunk
-   * @returns {boolean} true
+   * Write a closed chunk of the recording worker.
+   * @param {{records: Uint8Array, indexes: Uint8Array, crc: number, start: bigint, end: bigint,
+   *   messages: number, channels: number[][]}} chunk
+   * @param {function(): void} done called once its buffers are no longer needed
+   * @returns {boolean} false when it was dropped (a failed file, or too much waiting)
    */
-  chunk(chunk) {
+  writeChunk(chunk, done) {
     const { records, indexes } = chunk;
-    const v = this.headView;
+    if (this.failed || this.queuedBytes + records.length > this.maxQueuedBytes) {
+      done();
+      return false;
+    }
+    const head = new Uint8Array(CHUNK_HEAD);
+    const v = new DataView(head.buffer);
     v.setUint8(0, OP_CHUNK);
     v.setBigUint64(1, BigInt(CHUNK_HEAD - 9 + records.length), true);
     v.setBigUint64(9, chunk.start, true);
     v.setBigUint64(17, chunk.end, true);
     v.setBigUint64(25, BigInt(records.length), true);
-    const crc = crc32 ? crc32(records) : 0;
-    v.setUint32(33, crc, true);
+    v.setUint32(33, chunk.crc, true);
     v.setUint32(37, 0, true); // compression: none ('')
     v.setBigUint64(41, BigInt(records.length), true);
-    const at = this.position;
-    this._write([this.head, records, indexes]);
-    this.onWritten({
-      kind: 'chunk', offset: at, chunkLength: CHUNK_HEAD + records.length,
-      indexLength: indexes.length, size: records.length, crc,
+    const size = records.length;
+    const indexLength = indexes.length;
+    this._enqueue([head, records, indexes], (at) => ({
+      kind: 'chunk', offset: at, chunkLength: CHUNK_HEAD + size, indexLength, size, crc: chunk.crc,
       start: String(chunk.start), end: String(chunk.end), messages: chunk.messages,
       channels: chunk.channels,
-    });
+    }), done);
     return true;
   }
 
-  /** Write all of `parts` at the position; on failure cut the file back and throw BagWriteError. */
-  _write(parts) {
-    if (this.failed) throw this.failed;
-    let total = 0;
-    for (const p of parts) total += p.length;
-    let written = 0;
-    try {
-      while (written < total) {
-        const n = writevSync(this.fd, remaining(parts, written));
-        if (n <= 0) throw Object.assign(new Error('the file takes no more bytes'), { code: 'EIO' });
-        written += n;
-      }
-    } catch (e) {
-      // a record cut off would end the stream readers' file there with an error:
-      // the file ends after its last whole record instead
-      try {
-        ftruncateSync(this.fd, this.position);
-      } catch (ignored) {
-        // the launcher cuts the file to the last whole record it was told of
-      }
-      this.failed = new BagWriteError(e, this.position);
-      throw this.failed;
+  /** Resolves once every write asked for is done (or failed). */
+  drained() {
+    if (!this.writing) return Promise.resolve();
+    return new Promise((resolve) => this._idle.push(resolve));
+  }
+
+  _enqueue(parts, report, done = () => {}) {
+    let bytes = 0;
+    for (const p of parts) bytes += p.length;
+    this.queue.push({ parts, bytes, report, done });
+    this.queuedBytes += bytes;
+    if (!this.writing) this._next();
+  }
+
+  _next() {
+    const job = this.queue.shift();
+    if (!job) {
+      this.writing = false;
+      for (const resolve of this._idle.splice(0)) resolve();
+      return;
     }
-    this.position += total;
+    this.writing = true;
+    const at = this.position;
+    this._writeAll(job.parts, 0, job.bytes, (error) => {
+      this.queuedBytes -= job.bytes;
+      // the report before done(): done gives the buffers away (they detach)
+      const report = error ? null : job.report(at);
+      job.done();
+      if (error) {
+        this._fail(error);
+        return;
+      }
+      this.position = at + job.bytes;
+      this.onWritten(report);
+      this._next();
+    });
+  }
+
+  /** writev until all of `parts` is written (a writev may write part of them). */
+  _writeAll(parts, written, total, callback) {
+    writev(this.fd, remaining(parts, written), (error, n) => {
+      if (error) callback(error);
+      else if (n <= 0) callback(Object.assign(new Error('the file takes no more bytes'), { code: 'EIO' }));
+      else if (written + n < total) this._writeAll(parts, written + n, total, callback);
+      else callback(null);
+    });
+  }
+
+  /**
+   * A record cut off would end the stream readers' file there with an
+   * error: the file ends after its last whole record instead, and nothing
+   * more is written.
+   */
+  _fail(error) {
+    const kept = this.position;
+    this.failed = error;
+    for (const job of this.queue.splice(0)) job.done();
+    this.queuedBytes = 0;
+    ftruncate(this.fd, kept, () => {
+      // on an error here the launcher cuts the file to the end it was told of
+      this.writing = false;
+      this.onFailed({ code: error.code || 'EIO', message: `writing the bag failed: ${error.message}`, kept });
+      for (const resolve of this._idle.splice(0)) resolve();
+    });
   }
 }
 

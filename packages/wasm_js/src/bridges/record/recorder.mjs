@@ -9,22 +9,23 @@
  *
  * The subscriptions belong to the recording worker (./recording_process.mjs),
  * which copies every message as the bus delivered it (raw CDR, no decode)
- * into the records of an MCAP chunk and writes each closed chunk into the
- * bag itself; when the launcher compresses chunks, they go to it through
- * the pipe instead. Each new topic is first announced to the launcher
- * (CHANNEL), which answers with the Schema and Channel records to write
- * before it (READY) or says why the topic is not recorded (REFUSED); the
- * launcher learns of every write (WRITTEN) for the bag's summary
- * (colcon_wasm/record/session.py).
+ * into the records of an MCAP chunk; each closed chunk comes here and is
+ * written into the bag (./file_sink.mjs), or, when the launcher compresses
+ * chunks, goes to it through the pipe. Each new topic is first announced
+ * to the launcher (CHANNEL), which answers with the Schema and Channel
+ * records to write before it (READY) or says why the topic is not recorded
+ * (REFUSED); the launcher learns of every write (WRITTEN, or FAILED) for
+ * the bag's summary (colcon_wasm/record/session.py).
  *
  * @module bridges/record/recorder
  */
 
 import { subscriptionQos } from '../../page/graph.mjs';
 import { chunkHead, FrameReader, jsonFrame, Kind } from './frames.mjs';
+import { FileSink } from './file_sink.mjs';
 import { RecordingProcess } from './recording_process.mjs';
 
-/** Bytes waiting for the pipe beyond which chunks are dropped (and counted). */
+/** Bytes waiting for the pipe or the disk beyond which chunks are dropped (and counted). */
 const MAX_QUEUED_BYTES = 256 * 1024 * 1024;
 /** History of the recorder's subscriptions: bursts between two wake-ups are kept. */
 const DEPTH = 1000;
@@ -57,6 +58,8 @@ export class Recorder {
     /** channel id -> {resolve, reject}: the launcher's answer to a CHANNEL */
     this.answers = new Map();
     this.process = null;
+    /** the bag, when this side writes it (no compression) */
+    this.bag = null;
     this.dropped = 0;
     this.closed = false;
     this.broken = false;
@@ -68,9 +71,19 @@ export class Recorder {
 
   async start() {
     this._readAnswers();
+    if (this.file) {
+      this.bag = new FileSink({
+        fd: this.file.fd, offset: this.file.offset, maxQueuedBytes: MAX_QUEUED_BYTES,
+        onWritten: (report) => this._send(jsonFrame(Kind.WRITTEN, report)),
+        onFailed: (failure) => {
+          this._send(jsonFrame(Kind.FAILED, failure));
+          this.process.halt().catch(() => {});
+        },
+      });
+    }
     this.process = await RecordingProcess.start(this.runtime, {
-      fd: this.file ? this.file.fd : null, offset: this.file ? this.file.offset : 0,
-      chunkBytes: CHUNK_BYTES, flushMs: FLUSH_MS, onReport: (r) => this._report(r),
+      crc: !!this.file, chunkBytes: CHUNK_BYTES, flushMs: FLUSH_MS,
+      onChunk: (chunk) => (this.bag ? this._write(chunk) : this._chunk(chunk)),
     });
     this.node = await this.process.node('rosbag2_recorder');
     this.runtime.onGraphChange(() => this._scan());
@@ -113,7 +126,11 @@ export class Recorder {
       this._send(jsonFrame(Kind.CHANNEL, { id, topic: t.name, type, qos: offered }));
       const qos = subscriptionQos(offered, DEPTH);
       this.subscriptions.push(answered
-        .then((records) => this.process.add({ node: this.node, topic: t.name, type, qos, channel: id, records }))
+        .then((records) => {
+          // the channel's records reach the bag before any chunk with its messages
+          if (this.bag) this.bag.writeRecords(records);
+          return this.process.add({ node: this.node, topic: t.name, type, qos, channel: id });
+        })
         .then((ep) => {
           this.subscribed.add(t.name);
           return ep;
@@ -131,11 +148,12 @@ export class Recorder {
     return !this.topics || this.topics.has(topic);
   }
 
-  /** What the recording worker says: its writes, a failed write, or a chunk for the pipe. */
-  _report(r) {
-    if (r.type === 'chunk') this._chunk(r);
-    else if (r.type === 'written') this._send(jsonFrame(Kind.WRITTEN, strip(r)));
-    else if (r.type === 'failed') this._send(jsonFrame(Kind.FAILED, strip(r)));
+  /** Write a chunk of the recording worker into the bag; past the bound it is dropped and counted. */
+  _write(chunk) {
+    const records = new Uint8Array(chunk.records, 0, chunk.length);
+    const written = this.bag.writeChunk({ ...chunk, records, indexes: new Uint8Array(chunk.indexes) },
+      () => this.process.recycle(chunk.records));
+    if (!written && !this.bag.failed) this.dropped += chunk.messages;
   }
 
   /** Write frames to the pipe (nothing once it broke). */
@@ -165,15 +183,21 @@ export class Recorder {
   }
 
   /** Stop recording: what is waiting on the bus goes into the last chunk, then the pipe ends. */
-  async close() {
-    if (this.closed) return;
+  close() {
+    // a second call waits for the first: the host must not end before the bag is written
+    if (!this._closing) this._closing = this._close();
+    return this._closing;
+  }
+
+  async _close() {
     this.closed = true;
     // the subscriptions in the making first; the worker's last reports come
     // before its answer to stop
     await Promise.all(this.subscriptions);
     const { lost } = this.process ? await this.process.stop() : { lost: 0 };
+    if (this.bag) await this.bag.drained();
     if (this.dropped) {
-      this.log('warning', `${this.dropped} messages were dropped: the launcher did not keep up with writing them`);
+      this.log('warning', `${this.dropped} messages were dropped: ${this.bag ? 'the disk' : 'the launcher'} did not keep up with writing them`);
     }
     if (lost) {
       this.log('warning', `${lost} messages were lost before the recorder took them: their publishers' history (QoS depth) was overwritten first; a deeper history keeps them`);
@@ -183,10 +207,4 @@ export class Recorder {
     if (this.broken) return;
     await new Promise((resolve) => this.sink.end(resolve));
   }
-}
-
-/** A report without its `type` (the frame's kind says it). */
-function strip(report) {
-  const { type, ...rest } = report;
-  return rest;
 }

@@ -5,7 +5,7 @@
  * The main thread's handle of the recording worker (./recording_worker.mjs,
  * Node.js only): it starts the worker as a bus process of the Runtime,
  * sends it requests (each followed by a ring of its doorbell, since the
- * worker reads them between waits) and passes its reports on.
+ * worker reads them between waits) and passes its chunks on.
  *
  * @module bridges/record/recording_process
  */
@@ -21,30 +21,30 @@ export class RecordingProcess {
    * Start the recording worker.
    * @param {import('../../runtime.mjs').Runtime} runtime
    * @param {object} options
-   * @param {?number} options.fd the bag's descriptor, to write chunks to (null: post them)
-   * @param {number} options.offset where the worker's first write goes
+   * @param {boolean} options.crc add the CRC-32 of each chunk's records (`crc`)
    * @param {number} options.chunkBytes chunk size
    * @param {number} options.flushMs a chunk is closed at the latest this long after its first message
-   * @param {function(object): void} options.onReport gets the worker's reports:
-   *   {type: 'written'|'chunk'|'failed', ...}
+   * @param {function(object): void} options.onChunk gets each closed chunk: {records:
+   *   ArrayBuffer, length, indexes: ArrayBuffer, crc, channels, start, end, messages}; give
+   *   `records` back with `recycle`
    * @returns {Promise<RecordingProcess>}
    */
-  static async start(runtime, { fd, offset, chunkBytes, flushMs, onReport }) {
+  static async start(runtime, { crc, chunkBytes, flushMs, onChunk }) {
     const pid = await runtime._allocPid(PROC_KIND_TOOLS);
     const { port1, port2 } = new MessageChannel();
     const requests = new SharedArrayBuffer(4);
     const worker = new Worker(new URL('./recording_worker.mjs', import.meta.url), {
       name: 'wasm_js recorder',
       workerData: {
-        handle: runtime.bus.handle, pid, control: port2, requests, fd, offset, chunkBytes, flushMs,
+        handle: runtime.bus.handle, pid, control: port2, requests, crc, chunkBytes, flushMs,
         coalesceMs: COALESCE_MS,
       },
       transferList: [port2],
     });
-    return new RecordingProcess(runtime, pid, worker, port1, new Int32Array(requests), onReport);
+    return new RecordingProcess(runtime, pid, worker, port1, new Int32Array(requests), onChunk);
   }
 
-  constructor(runtime, pid, worker, port, requests, onReport) {
+  constructor(runtime, pid, worker, port, requests, onChunk) {
     this.runtime = runtime;
     /** The recording worker's bus process id. */
     this.pid = pid;
@@ -53,7 +53,6 @@ export class RecordingProcess {
     this._requests = requests;
     this._next = 1;
     this._pending = new Map();
-    this._onReport = onReport;
     this._ended = false;
     this.exited = new Promise((resolve) => {
       worker.on('exit', (code) => {
@@ -65,10 +64,12 @@ export class RecordingProcess {
         runtime._reap(pid, null).then(resolve, resolve);
       });
     });
-    worker.on('error', (e) => onReport({ type: 'failed', code: 'EWORKER', message: `the recording worker failed: ${e.message}`, kept: null }));
+    /** the worker's error, when it failed */
+    this.error = null;
+    worker.on('error', (e) => { this.error = e; });
     worker.on('message', (m) => {
-      if (m.type !== 'reply') {
-        onReport(m);
+      if (m.type === 'chunk') {
+        onChunk(m);
         return;
       }
       const p = this._pending.get(m.id);
@@ -90,11 +91,14 @@ export class RecordingProcess {
     });
   }
 
-  /** Post a request, count it (the worker reads its port only then) and wake the worker. */
-  _post(message, transfer = []) {
+  /**
+   * Post a request and count it (the worker reads its port only then); wake
+   * the worker unless it can wait (a buffer given back).
+   */
+  _post(message, transfer = [], wake = true) {
     this._port.postMessage(message, transfer);
     Atomics.add(this._requests, 0, 1);
-    this.runtime.bus.ring(this.pid);
+    if (wake) this.runtime.bus.ring(this.pid);
   }
 
   /** Create the recorder's node. */
@@ -103,18 +107,22 @@ export class RecordingProcess {
   }
 
   /**
-   * Record a topic as MCAP channel `channel`: `records` (the launcher's
-   * Schema/Channel records, file mode) reach the bag first.
+   * Record a topic as MCAP channel `channel`.
    * @returns {Promise<number>} the subscription endpoint
    */
-  add({ node, topic, type, qos, channel, records }) {
-    return this._call('add', { node, topic, type, qos, channel, records });
+  add({ node, topic, type, qos, channel }) {
+    return this._call('add', { node, topic, type, qos, channel });
   }
 
-  /** Give a posted chunk's records buffer back (pipe mode). */
+  /** Give a chunk's records buffer back, for the next chunks. */
   recycle(buffer) {
     if (this._ended) return;
-    this._post({ id: 0, op: 'recycle', args: { buffer } }, [buffer]);
+    this._post({ id: 0, op: 'recycle', args: { buffer } }, [buffer], false);
+  }
+
+  /** Record nothing more (the bag failed); `stop` still ends the worker. */
+  halt() {
+    return this._call('halt');
   }
 
   /**

@@ -6,9 +6,11 @@
  * whose thread does nothing but record. It blocks in `Atomics.wait` on its
  * doorbell like a C++ node (no event loop turn, promise or timer per
  * wake-up), copies what its subscriptions received into MCAP chunks
- * (./chunk_builder.mjs) and writes each closed chunk to the bag itself
- * (./file_sink.mjs), or posts it to the main thread when the launcher
- * compresses chunks.
+ * (./chunk_builder.mjs) and posts each closed chunk to the main thread (its
+ * buffers transferred), which writes it into the bag (./file_sink.mjs) or
+ * sends it to the launcher to be compressed. It never waits for the disk.
+ * With `crc`, it adds the CRC-32 of each chunk's records (zlib's C code)
+ * while they are in its cache.
  *
  * After a wake-up it naps `coalesceMs` before the next wait, so a 1 kHz
  * topic wakes it a few hundred times a second rather than a thousand; the
@@ -16,22 +18,20 @@
  *
  * Control comes through a MessagePort read synchronously between waits
  * (`receiveMessageOnPort`, about 20 µs a call: only when a shared counter
- * says a request was posted); whoever posts counts it and rings this
- * process' doorbell.
- * Each request is answered on `parentPort` ({type: 'reply', id, value} or
- * {error}); write reports are {type: 'written', ...}, pipe-mode chunks
- * {type: 'chunk', ...} and a failed write {type: 'failed', code, message,
- * kept}, after which nothing more is recorded.
+ * says a request was posted); whoever posts counts it and, unless it only
+ * gives a buffer back, rings this process' doorbell. Each request is
+ * answered on `parentPort` ({type: 'reply', id, value} or {error}); chunks
+ * are {type: 'chunk', ...}.
  *
  * @module bridges/record/recording_worker
  */
 
 import { parentPort, receiveMessageOnPort, workerData } from 'node:worker_threads';
 import { BusClient, EventType, KIND_SUBSCRIPTION } from '../../bus_client.mjs';
+import zlib from 'node:zlib';
 import { ChunkBuilder } from './chunk_builder.mjs';
-import { BagWriteError, FileSink } from './file_sink.mjs';
 
-const { handle, pid, control, requests, fd, offset, chunkBytes, flushMs, coalesceMs } = workerData;
+const { handle, pid, control, requests, crc, chunkBytes, flushMs, coalesceMs } = workerData;
 /** requests[0] counts the requests posted: the port is read only when it moved */
 const posted = new Int32Array(requests);
 let served = 0;
@@ -39,64 +39,50 @@ const client = BusClient.attach(handle, pid);
 const nap = new Int32Array(new SharedArrayBuffer(4));
 const post = (m, transfer) => parentPort.postMessage(m, transfer || []);
 
-const sink = fd === null ? null : new FileSink({
-  fd, offset, onWritten: (report) => post({ type: 'written', ...report }),
-});
-const builder = new ChunkBuilder(client, {
-  chunkBytes, flushMs,
-  sink: sink ? (chunk) => sink.chunk(chunk) : postChunk,
-});
+/** Node.js 20.15 and later: the C CRC-32 of zlib; else the chunks go without one (CRC 0, allowed). */
+const crc32 = crc && typeof zlib.crc32 === 'function' ? zlib.crc32 : null;
+const builder = new ChunkBuilder(client, { chunkBytes, flushMs, sink: postChunk });
 /** subscription endpoints of the recording */
 const endpoints = new Set();
-let failed = null;
+let halted = false;
 let running = true;
 
-/** Pipe mode: the chunk's buffers go to the main thread (transferred), the records one comes back. */
+/** The chunk's buffers go to the main thread (transferred); the records one comes back. */
 function postChunk(chunk) {
   const records = chunk.records.buffer;
   post({
     type: 'chunk', records, length: chunk.records.length, indexes: chunk.indexes.buffer,
+    crc: crc32 ? crc32(chunk.records) : 0,
     channels: chunk.channels, start: chunk.start, end: chunk.end, messages: chunk.messages,
   }, [records, chunk.indexes.buffer]);
   return false;
 }
 
-/** Stop recording for good after a failed write: say why once, let go of the subscriptions. */
-function fail(e) {
-  if (!(e instanceof BagWriteError)) throw e;
-  failed = e;
-  post({ type: 'failed', code: e.code, message: e.message, kept: e.kept });
-  for (const ep of endpoints) client.destroyEndpoint(ep);
+/** Let go of every subscription (the ones it took are in the chunks posted). */
+function unsubscribe() {
+  let lost = 0;
+  for (const ep of endpoints) {
+    lost += client.eventStatus(ep, EventType.MESSAGE_LOST, false).total;
+    client.destroyEndpoint(ep);
+  }
   endpoints.clear();
   builder.channels.clear();
+  return lost;
 }
 
 /** Copy what came; close the chunk when its time is up. */
 function record() {
-  if (failed) return;
-  try {
-    builder.drain();
-    if (builder.flushDue()) builder.flush();
-  } catch (e) {
-    fail(e);
-  }
+  builder.drain();
+  if (builder.flushDue()) builder.flush();
 }
 
 const operations = {
   node({ name, namespace }) {
     return client.createNode({ name, namespace, context: client.createContext() }).index;
   },
-  /** Write the topic's Schema/Channel records (file mode), then subscribe. */
-  add({ node, topic, type, qos, channel, records }) {
-    if (failed) throw new Error(`recording stopped: ${failed.message}`);
-    if (sink && records) {
-      try {
-        sink.writeRecords(new Uint8Array(records));
-      } catch (e) {
-        fail(e);
-        throw new Error(`recording stopped: ${e.message}`);
-      }
-    }
+  /** Subscribe to a topic as MCAP channel `channel`. */
+  add({ node, topic, type, qos, channel }) {
+    if (halted) throw new Error('recording stopped');
     const ep = client.createEndpoint({ kind: KIND_SUBSCRIPTION, node, name: topic, type, qos }).index;
     endpoints.add(ep);
     builder.add(ep, channel);
@@ -106,6 +92,11 @@ const operations = {
   recycle({ buffer }) {
     builder.recycle(buffer);
   },
+  /** Record nothing more (the bag failed): unsubscribe, keep answering. */
+  halt() {
+    halted = true;
+    unsubscribe();
+  },
   /**
    * Record what is waiting, close the last chunk, unsubscribe, end the loop.
    * @returns {{lost: number}} the messages the publishers' histories dropped
@@ -113,19 +104,8 @@ const operations = {
    */
   stop() {
     record();
-    if (!failed) {
-      try {
-        builder.flush();
-      } catch (e) {
-        fail(e);
-      }
-    }
-    let lost = 0;
-    for (const ep of endpoints) {
-      lost += client.eventStatus(ep, EventType.MESSAGE_LOST, false).total;
-      client.destroyEndpoint(ep);
-    }
-    endpoints.clear();
+    builder.flush();
+    const lost = unsubscribe();
     running = false;
     return { lost };
   },
