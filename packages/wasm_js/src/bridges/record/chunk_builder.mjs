@@ -6,8 +6,9 @@
  * subscriptions are copied from the bus straight into the Message records
  * of one open chunk, with the chunk's message indexes beside them. A chunk
  * is closed when it is full or `flushMs` after its first message, and
- * handed to a sink (bridges/record/chunk_sinks.mjs): the bag file itself
- * (`--record`, no compression) or the launcher's pipe (compressed bags).
+ * handed to a sink (the recording worker posts it to the main thread, which
+ * writes it into the bag or to the launcher's pipe). Chunk buffers are
+ * slots of a shared pool (./chunk_pool.mjs) when there is one.
  *
  * This is the part of the MCAP layout built per message: the records of a
  * chunk's content (Message, opcode 0x05) and its MessageIndex records
@@ -24,8 +25,6 @@ const OP_MESSAGE = 0x05;
 const OP_MESSAGE_INDEX = 0x07;
 /** opcode, record length, channel id, sequence, log time, publish time */
 const MESSAGE_HEAD = 1 + 8 + 2 + 4 + 8 + 8;
-/** A sink keeps at most this many spare chunk buffers. */
-const SPARE_BUFFERS = 4;
 
 /** Nanoseconds since the epoch (BigInt) of a bus time in milliseconds since the epoch. */
 function nanoseconds(ms) {
@@ -36,6 +35,7 @@ function nanoseconds(ms) {
  * A closed chunk, as the sinks get it.
  * @typedef {object} ClosedChunk
  * @property {Uint8Array} records its Message records (a view of the chunk buffer)
+ * @property {number} slot the chunk buffer's slot in the pool, or -1 for a buffer of its own
  * @property {Uint8Array} indexes its MessageIndex records, one per channel
  * @property {number[][]} channels [channel id, message count, index record length] per channel
  * @property {bigint} start earliest log time (ns)
@@ -49,21 +49,21 @@ export class ChunkBuilder {
    * @param {object} options
    * @param {number} options.chunkBytes a chunk is closed once its records reach this size
    * @param {number} options.flushMs and at the latest this long after its first message
-   * @param {function(ClosedChunk): boolean} options.sink takes a closed chunk; returns true
-   *   when it is done with the chunk's buffer (which is then reused), false when it gives it
-   *   back later with `recycle`
+   * @param {function(ClosedChunk): void} options.sink takes a closed chunk (its buffer is the
+   *   sink's from then on: a pool slot it frees, or a buffer of its own)
+   * @param {?import('./chunk_pool.mjs').ChunkPool} [options.pool] where chunk buffers come
+   *   from (a chunk bigger than a slot, or with every slot taken, gets a buffer of its own)
    * @param {function(): number} [options.now] a clock in ms (for `flushDue`)
    */
-  constructor(client, { chunkBytes, flushMs, sink, now = () => performance.now() }) {
+  constructor(client, { chunkBytes, flushMs, sink, pool = null, now = () => performance.now() }) {
     this.client = client;
     this.chunkBytes = chunkBytes;
     this.flushMs = flushMs;
     this.sink = sink;
+    this.pool = pool;
     this.now = now;
     /** subscription endpoint -> MCAP channel id */
     this.channels = new Map();
-    /** buffers given back, for the next chunks */
-    this.spare = [];
     /** when the open chunk must be closed (ms of `now`), Infinity while it is empty */
     this.deadline = Infinity;
     this._open(chunkBytes);
@@ -77,13 +77,6 @@ export class ChunkBuilder {
   /** Stop recording `ep` (what it has taken is in the chunk). */
   remove(ep) {
     this.channels.delete(ep);
-  }
-
-  /** Take a chunk buffer back for later chunks. */
-  recycle(buffer) {
-    if (buffer.byteLength >= this.chunkBytes && this.spare.length < SPARE_BUFFERS) {
-      this.spare.push(buffer instanceof Uint8Array ? buffer : new Uint8Array(buffer));
-    }
   }
 
   /**
@@ -154,18 +147,17 @@ export class ChunkBuilder {
       channels.push([channel, entries.length / 2, 15 + bytes]);
       at = p;
     }
-    const buffer = this.buffer;
-    const done = this.sink({
-      records: buffer.subarray(0, this.used), indexes, channels,
+    this.sink({
+      records: this.buffer.subarray(0, this.used), slot: this.slot, indexes, channels,
       start: this.start, end: this.end, messages: this.count,
     });
-    if (done) this.recycle(buffer);
     this._open(this.chunkBytes);
   }
 
+  /** A buffer for the next chunk: a pool slot when one is free and big enough. */
   _open(size) {
-    const spare = size <= this.chunkBytes ? this.spare.pop() : undefined;
-    this.buffer = spare || new Uint8Array(Math.max(size, this.chunkBytes));
+    this.slot = this.pool && size <= this.pool.slotBytes ? this.pool.acquire() : -1;
+    this.buffer = this.slot >= 0 ? this.pool.bytes(this.slot) : new Uint8Array(Math.max(size, this.chunkBytes));
     this.view = new DataView(this.buffer.buffer, this.buffer.byteOffset, this.buffer.byteLength);
     this.used = 0;
     this.count = 0;

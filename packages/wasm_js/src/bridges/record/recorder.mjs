@@ -150,9 +150,7 @@ export class Recorder {
 
   /** Write a chunk of the recording worker into the bag; past the bound it is dropped and counted. */
   _write(chunk) {
-    const records = new Uint8Array(chunk.records, 0, chunk.length);
-    const written = this.bag.writeChunk({ ...chunk, records, indexes: new Uint8Array(chunk.indexes) },
-      () => this.process.recycle(chunk.records));
+    const written = this.bag.writeChunk(chunk, chunk.release);
     if (!written && !this.bag.failed) this.dropped += chunk.messages;
   }
 
@@ -164,21 +162,19 @@ export class Recorder {
   /**
    * Write a chunk of the recording worker to the pipe in one go (its head,
    * the records, the message indexes; nothing copied); past the bound it is
-   * dropped and its messages counted. Its buffer goes back to the worker
-   * once written.
+   * dropped and its messages counted. Its buffer is freed once written.
    */
   _chunk(chunk) {
-    const records = new Uint8Array(chunk.records, 0, chunk.length);
-    const indexes = new Uint8Array(chunk.indexes);
+    const { records, indexes } = chunk;
     if (this.broken || this.sink.writableLength > MAX_QUEUED_BYTES) {
       if (!this.broken) this.dropped += chunk.messages;
-      this.process.recycle(chunk.records);
+      chunk.release();
       return;
     }
     this.sink.cork();
-    this.sink.write(chunkHead(chunk, records.length + indexes.length));
+    this.sink.write(chunkHead({ ...chunk, length: records.length }, records.length + indexes.length));
     this.sink.write(records);
-    this.sink.write(indexes, () => this.process.recycle(chunk.records));
+    this.sink.write(indexes, () => chunk.release());
     process.nextTick(() => this.sink.uncork());
   }
 

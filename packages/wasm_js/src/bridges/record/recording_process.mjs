@@ -12,9 +12,12 @@
 
 import { MessageChannel, Worker } from 'node:worker_threads';
 import { PROC_KIND_TOOLS } from '../../layout.mjs';
+import { ChunkPool } from './chunk_pool.mjs';
 
 /** After a wake-up the worker naps this long: bursts are taken together. */
 const COALESCE_MS = 5;
+/** Chunk buffers shared with the worker: what may wait for the disk without an allocation. */
+const POOL_SLOTS = 16;
 
 export class RecordingProcess {
   /**
@@ -25,26 +28,28 @@ export class RecordingProcess {
    * @param {number} options.chunkBytes chunk size
    * @param {number} options.flushMs a chunk is closed at the latest this long after its first message
    * @param {function(object): void} options.onChunk gets each closed chunk: {records:
-   *   ArrayBuffer, length, indexes: ArrayBuffer, crc, channels, start, end, messages}; give
-   *   `records` back with `recycle`
+   *   Uint8Array, indexes: Uint8Array, crc, channels, start, end, messages, release}; call
+   *   `release()` once its bytes are written
    * @returns {Promise<RecordingProcess>}
    */
   static async start(runtime, { crc, chunkBytes, flushMs, onChunk }) {
     const pid = await runtime._allocPid(PROC_KIND_TOOLS);
     const { port1, port2 } = new MessageChannel();
     const requests = new SharedArrayBuffer(4);
+    const pool = ChunkPool.create(POOL_SLOTS, chunkBytes);
     const worker = new Worker(new URL('./recording_worker.mjs', import.meta.url), {
       name: 'wasm_js recorder',
       workerData: {
         handle: runtime.bus.handle, pid, control: port2, requests, crc, chunkBytes, flushMs,
+        pool: { sab: pool.sab, slots: pool.slots, slotBytes: pool.slotBytes },
         coalesceMs: COALESCE_MS,
       },
       transferList: [port2],
     });
-    return new RecordingProcess(runtime, pid, worker, port1, new Int32Array(requests), onChunk);
+    return new RecordingProcess(runtime, pid, worker, port1, new Int32Array(requests), pool, onChunk);
   }
 
-  constructor(runtime, pid, worker, port, requests, onChunk) {
+  constructor(runtime, pid, worker, port, requests, pool, onChunk) {
     this.runtime = runtime;
     /** The recording worker's bus process id. */
     this.pid = pid;
@@ -69,7 +74,11 @@ export class RecordingProcess {
     worker.on('error', (e) => { this.error = e; });
     worker.on('message', (m) => {
       if (m.type === 'chunk') {
-        onChunk(m);
+        const records = m.slot >= 0 ? pool.bytes(m.slot).subarray(0, m.length) : new Uint8Array(m.records, 0, m.length);
+        onChunk({
+          ...m, records, indexes: new Uint8Array(m.indexes),
+          release: () => { if (m.slot >= 0) pool.release(m.slot); },
+        });
         return;
       }
       const p = this._pending.get(m.id);
@@ -91,14 +100,11 @@ export class RecordingProcess {
     });
   }
 
-  /**
-   * Post a request and count it (the worker reads its port only then); wake
-   * the worker unless it can wait (a buffer given back).
-   */
-  _post(message, transfer = [], wake = true) {
+  /** Post a request, count it (the worker reads its port only then) and wake the worker. */
+  _post(message, transfer = []) {
     this._port.postMessage(message, transfer);
     Atomics.add(this._requests, 0, 1);
-    if (wake) this.runtime.bus.ring(this.pid);
+    this.runtime.bus.ring(this.pid);
   }
 
   /** Create the recorder's node. */
@@ -112,12 +118,6 @@ export class RecordingProcess {
    */
   add({ node, topic, type, qos, channel }) {
     return this._call('add', { node, topic, type, qos, channel });
-  }
-
-  /** Give a chunk's records buffer back, for the next chunks. */
-  recycle(buffer) {
-    if (this._ended) return;
-    this._post({ id: 0, op: 'recycle', args: { buffer } }, [buffer], false);
   }
 
   /** Record nothing more (the bag failed); `stop` still ends the worker. */

@@ -6,9 +6,10 @@
  * whose thread does nothing but record. It blocks in `Atomics.wait` on its
  * doorbell like a C++ node (no event loop turn, promise or timer per
  * wake-up), copies what its subscriptions received into MCAP chunks
- * (./chunk_builder.mjs) and posts each closed chunk to the main thread (its
- * buffers transferred), which writes it into the bag (./file_sink.mjs) or
- * sends it to the launcher to be compressed. It never waits for the disk.
+ * (./chunk_builder.mjs) in the slots of a pool shared with the main thread
+ * (./chunk_pool.mjs), and posts each closed chunk's slot to the main
+ * thread, which writes it into the bag (./file_sink.mjs) or sends it to the
+ * launcher to be compressed, and frees the slot. It never waits for the disk.
  * With `crc`, it adds the CRC-32 of each chunk's records (zlib's C code)
  * while they are in its cache.
  *
@@ -18,8 +19,8 @@
  *
  * Control comes through a MessagePort read synchronously between waits
  * (`receiveMessageOnPort`, about 20 µs a call: only when a shared counter
- * says a request was posted); whoever posts counts it and, unless it only
- * gives a buffer back, rings this process' doorbell. Each request is
+ * says a request was posted); whoever posts counts it and rings this
+ * process' doorbell. Each request is
  * answered on `parentPort` ({type: 'reply', id, value} or {error}); chunks
  * are {type: 'chunk', ...}.
  *
@@ -30,8 +31,9 @@ import { parentPort, receiveMessageOnPort, workerData } from 'node:worker_thread
 import { BusClient, EventType, KIND_SUBSCRIPTION } from '../../bus_client.mjs';
 import zlib from 'node:zlib';
 import { ChunkBuilder } from './chunk_builder.mjs';
+import { ChunkPool } from './chunk_pool.mjs';
 
-const { handle, pid, control, requests, crc, chunkBytes, flushMs, coalesceMs } = workerData;
+const { handle, pid, control, requests, pool, crc, chunkBytes, flushMs, coalesceMs } = workerData;
 /** requests[0] counts the requests posted: the port is read only when it moved */
 const posted = new Int32Array(requests);
 let served = 0;
@@ -41,21 +43,23 @@ const post = (m, transfer) => parentPort.postMessage(m, transfer || []);
 
 /** Node.js 20.15 and later: the C CRC-32 of zlib; else the chunks go without one (CRC 0, allowed). */
 const crc32 = crc && typeof zlib.crc32 === 'function' ? zlib.crc32 : null;
-const builder = new ChunkBuilder(client, { chunkBytes, flushMs, sink: postChunk });
+const builder = new ChunkBuilder(client, {
+  chunkBytes, flushMs, sink: postChunk, pool: new ChunkPool(pool.sab, pool.slots, pool.slotBytes),
+});
 /** subscription endpoints of the recording */
 const endpoints = new Set();
 let halted = false;
 let running = true;
 
-/** The chunk's buffers go to the main thread (transferred); the records one comes back. */
+/** Post a closed chunk: its pool slot (or its own buffer, transferred), its indexes. */
 function postChunk(chunk) {
-  const records = chunk.records.buffer;
+  const own = chunk.slot < 0 ? chunk.records.buffer : null;
+  const transfer = own ? [own, chunk.indexes.buffer] : [chunk.indexes.buffer];
   post({
-    type: 'chunk', records, length: chunk.records.length, indexes: chunk.indexes.buffer,
-    crc: crc32 ? crc32(chunk.records) : 0,
+    type: 'chunk', slot: chunk.slot, records: own, length: chunk.records.length,
+    indexes: chunk.indexes.buffer, crc: crc32 ? crc32(chunk.records) : 0,
     channels: chunk.channels, start: chunk.start, end: chunk.end, messages: chunk.messages,
-  }, [records, chunk.indexes.buffer]);
-  return false;
+  }, transfer);
 }
 
 /** Let go of every subscription (the ones it took are in the chunks posted). */
@@ -88,9 +92,6 @@ const operations = {
     builder.add(ep, channel);
     record(); // a TRANSIENT_LOCAL writer's history is there at once
     return ep;
-  },
-  recycle({ buffer }) {
-    builder.recycle(buffer);
   },
   /** Record nothing more (the bag failed): unsubscribe, keep answering. */
   halt() {
