@@ -205,7 +205,7 @@ GAPS_MS = [0, 100, 50, 300, 20, 20, 500, 150, 80, 400, 60, 200]
 def test_messages_lost_before_the_recorder_took_them_are_counted(install, tmp_path):
     # a talker whose history holds one message, at 2 kHz: the recorder, which
     # wakes at most every few milliseconds, finds most of them overwritten
-    path = tmp_path / 'lossy.mcap'
+    path = tmp_path / 'talker_at_2khz.mcap'
     code, out, err = colcon_wasm('run', '--install-base', install, '--duration', '3',
                                  '--record', path, 'demo_nodes', 'talker', '--ros-args',
                                  '-p', 'rate:=2000', '-p', 'depth:=1')
@@ -213,7 +213,7 @@ def test_messages_lost_before_the_recorder_took_them_are_counted(install, tmp_pa
     said = re.search(r'(\d+) messages were lost before the recorder took them', err)
     assert said, err
     lost = int(said.group(1))
-    assert re.search(rf"recorded \d+ messages into '.*lossy\.mcap' \({lost} lost before",
+    assert re.search(rf"recorded \d+ messages into '.*talker_at_2khz\.mcap' \({lost} lost before",
                      err), err
     counts = [d.count for topic, _, _, d, _ in mcap_messages(path) if topic == '/chatter']
     assert lost > 0 and counts == sorted(counts)
