@@ -9,12 +9,13 @@
  */
 
 import { Bus, BusError, Code } from './bus.mjs';
+import { graphOf } from './bus/graph.mjs';
 import { PROC_KIND_NODE, PROC_KIND_RUNTIME, PROC_KIND_TOOLS } from './layout.mjs';
 import { compileWasm, fetchScript, ProgramWorker, isNode, resolveUrl, siblingUrl } from './platform.mjs';
 import { FromWorker, ToWorker, UNCAUGHT_EXCEPTION } from './protocol.mjs';
 import { checkedFiles, checkedMounts } from './spawn_options.mjs';
 import { Tools } from './tools_process/main_thread.mjs';
-import { gidHex, makeStdinPipe, NodeProcess, severityOf, stripAnsi } from './node_process.mjs';
+import { makeStdinPipe, NodeProcess, severityOf, stripAnsi } from './node_process.mjs';
 
 export { NodeProcess, severityOf, stripAnsi };
 
@@ -144,6 +145,8 @@ export class Runtime {
     this._watching = false;
     this._closed = false;
     this._tools = null;
+    /** Bus processes of bridges in workers of their own (helperProcess): pid -> name. */
+    this._helpers = new Map();
     /** Warm workers: started workers with the runtime modules loaded, waiting for a spawn. */
     this._warm = options.warmWorkers === undefined ? 1 : options.warmWorkers;
     this._warmPthreadWorkers = options.warmPthreadWorkers === undefined
@@ -406,36 +409,9 @@ export class Runtime {
    * endpoints with QoS and gids), per domain.
    */
   graph() {
-    const snap = this.bus.snapshot();
-    const procName = (pid) => (this.processes.get(pid) || {}).name || (this._tools && this._tools.pid === pid ? 'tools' : '');
-    const nodes = snap.nodes.map((n) => ({
-      name: n.name, namespace: n.namespace, enclave: n.enclave, domain: n.domain, pid: n.pid,
-      process: procName(n.pid), gid: gidHex(n.gid),
-    }));
-    const topics = new Map();
-    const services = new Map();
-    for (const e of snap.endpoints) {
-      const isTopic = e.kind === 1 || e.kind === 2;
-      const map = isTopic ? topics : services;
-      const key = `${e.domain}\u0000${e.name}`;
-      let entry = map.get(key);
-      if (!entry) {
-        entry = isTopic
-          ? { name: e.name, domain: e.domain, types: [], publishers: [], subscriptions: [] }
-          : { name: e.name, domain: e.domain, types: [], servers: [], clients: [] };
-        map.set(key, entry);
-      }
-      if (!entry.types.includes(e.type)) entry.types.push(e.type);
-      const ep = { node: e.node, namespace: e.namespace, type: e.type, gid: gidHex(e.gid), qos: e.qos, pid: e.pid };
-      ({ 1: entry.publishers, 2: entry.subscriptions, 3: entry.servers, 4: entry.clients })[e.kind].push(ep);
-    }
-    const byName = (a, b) => (a.name < b.name ? -1 : a.name > b.name ? 1 : a.domain - b.domain);
-    return {
-      version: snap.version,
-      nodes: nodes.sort((a, b) => (a.namespace + a.name < b.namespace + b.name ? -1 : 1)),
-      topics: [...topics.values()].sort(byName),
-      services: [...services.values()].sort(byName),
-    };
+    const procName = (pid) => (this.processes.get(pid) || {}).name || (this._tools && this._tools.pid === pid ? 'tools' : '')
+      || this._helpers.get(pid) || '';
+    return graphOf(this.bus.snapshot(), procName);
   }
 
   /**
@@ -475,6 +451,27 @@ export class Runtime {
       else Promise.resolve().then(loop);
     };
     loop();
+  }
+
+  /**
+   * A process id for a JS-only bus process that a bridge runs in a worker of
+   * its own (the Zenoh gateway, bridges/zenoh/): the worker attaches to
+   * `bus.handle` with it. graph() names the process `name`.
+   * @param {string} name
+   * @returns {Promise<{pid: number, release: function(): Promise<void>}>} release: remove
+   *   the process from the bus (its nodes and endpoints) once its worker stopped
+   */
+  async helperProcess(name) {
+    const pid = await this._allocPid(PROC_KIND_TOOLS);
+    this._helpers.set(pid, name);
+    let released = null;
+    const release = () => {
+      if (!released) {
+        released = this._reap(pid, null).finally(() => this._helpers.delete(pid));
+      }
+      return released;
+    };
+    return { pid, release };
   }
 
   /**

@@ -90,3 +90,46 @@ export function readGraph(bus, filter) {
   }
   return { nodes, endpoints };
 }
+
+/** A gid (4 words) in hex, byte by byte (as Runtime.graph() spells it). */
+function hex(words) {
+  return Array.from(new Uint8Array(Int32Array.from(words).buffer), (b) => b.toString(16).padStart(2, '0')).join('');
+}
+
+/**
+ * The graph of a snapshot as Runtime.graph() gives it: nodes, and topics and
+ * services (per domain, by name) with their types and endpoints.
+ * @param {{version: number, nodes: object[], endpoints: object[]}} snap snapshot()'s result
+ * @param {function(number): string} [processName] a process' name by its id
+ * @returns {{version: number, nodes: object[], topics: object[], services: object[]}}
+ */
+export function graphOf(snap, processName = () => '') {
+  const nodes = snap.nodes.map((n) => ({
+    name: n.name, namespace: n.namespace, enclave: n.enclave, domain: n.domain, pid: n.pid,
+    process: processName(n.pid), gid: hex(n.gid),
+  }));
+  const topics = new Map();
+  const services = new Map();
+  for (const e of snap.endpoints) {
+    const isTopic = e.kind === 1 || e.kind === 2;
+    const map = isTopic ? topics : services;
+    const key = `${e.domain}\u0000${e.name}`;
+    let entry = map.get(key);
+    if (!entry) {
+      entry = isTopic
+        ? { name: e.name, domain: e.domain, types: [], publishers: [], subscriptions: [] }
+        : { name: e.name, domain: e.domain, types: [], servers: [], clients: [] };
+      map.set(key, entry);
+    }
+    if (!entry.types.includes(e.type)) entry.types.push(e.type);
+    const ep = { node: e.node, namespace: e.namespace, type: e.type, gid: hex(e.gid), qos: e.qos, pid: e.pid };
+    ({ 1: entry.publishers, 2: entry.subscriptions, 3: entry.servers, 4: entry.clients })[e.kind].push(ep);
+  }
+  const byName = (a, b) => (a.name < b.name ? -1 : a.name > b.name ? 1 : a.domain - b.domain);
+  return {
+    version: snap.version,
+    nodes: nodes.sort((a, b) => (a.namespace + a.name < b.namespace + b.name ? -1 : 1)),
+    topics: [...topics.values()].sort(byName),
+    services: [...services.values()].sort(byName),
+  };
+}

@@ -7,7 +7,7 @@
  * topics with types and publisher/subscriber counts, services, and actions
  * (recognised by their hidden `_action` services). Names with a part that
  * starts with '_' are hidden, as `ros2 topic list` hides them. The tools
- * process's own node is left out.
+ * process's own node is left out (and the Zenoh gateway's).
  */
 
 import { actionsOf } from './ros_clients.mjs';
@@ -23,13 +23,17 @@ export function nodeName(namespace, name) {
  * @param raw the Runtime's graph snapshot (null before the runtime starts)
  * @param {object} [options]
  * @param {number} [options.toolsPid] the bus process id of the tools process
+ * @param {number[]} [options.hiddenPids] other processes left out as the tools process is
+ *   (the Zenoh gateway's)
  */
-export function graphModel(raw, { toolsPid } = {}) {
+export function graphModel(raw, { toolsPid, hiddenPids = [] } = {}) {
   const model = { nodes: [], topics: [], services: [], actions: [] };
   if (!raw) return model;
+  const hidden = new Set(hiddenPids);
+  if (toolsPid !== undefined) hidden.add(toolsPid);
   const nodes = new Map();
   for (const n of raw.nodes || []) {
-    if (toolsPid !== undefined && n.pid === toolsPid) continue;
+    if (hidden.has(n.pid)) continue;
     const fqn = nodeName(n.namespace, n.name);
     nodes.set(fqn, {
       fqn, name: n.name, namespace: n.namespace, process: n.process || null, pid: n.pid,
@@ -39,7 +43,7 @@ export function graphModel(raw, { toolsPid } = {}) {
   const attach = (endpoints, list, name) => {
     let count = 0;
     for (const e of endpoints) {
-      if (toolsPid !== undefined && e.pid === toolsPid) continue;
+      if (hidden.has(e.pid)) continue;
       count++;
       const node = nodes.get(nodeName(e.namespace, e.node));
       if (node && !node[list].some((x) => x.name === name)) node[list].push({ name, type: e.type });
@@ -50,7 +54,7 @@ export function graphModel(raw, { toolsPid } = {}) {
     const publishers = attach(t.publishers, 'publishers', t.name);
     const subscribers = attach(t.subscriptions, 'subscriptions', t.name);
     if (publishers + subscribers === 0) continue;
-    const publisherQos = t.publishers.filter((e) => toolsPid === undefined || e.pid !== toolsPid)
+    const publisherQos = t.publishers.filter((e) => !hidden.has(e.pid))
       .map((e) => e.qos).filter(Boolean);
     model.topics.push({
       name: t.name, types: t.types, publishers, subscribers, hidden: isHidden(t.name), publisherQos,
