@@ -18,14 +18,12 @@ import { readFileSync } from 'node:fs';
 
 import { TypeRegistry } from '../../packages/wasm_js/src/cdr.mjs';
 import { Runtime } from '../../packages/wasm_js/src/runtime.mjs';
-import { nodeModuleFactory } from '../../packages/wasm_js/src/bridges/zenoh/launch.mjs';
 import { ZenohGateway } from '../../packages/wasm_js/src/bridges/zenoh/gateway.mjs';
 
 const o = JSON.parse(process.argv[2]);
 const TYPE = 'demo_interfaces/msg/Chatter';
 const QOS = { history: 'keep_last', depth: 100, reliability: 'reliable', durability: 'volatile' };
 const registry = new TypeRegistry(o.types.map((p) => JSON.parse(readFileSync(p, 'utf-8'))));
-const createModule = await nodeModuleFactory(o.module);
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
 
 function chatter(text) {
@@ -60,12 +58,12 @@ for (let g = 0; g < o.gateways; g++) {
     });
     if (g === 0 && n === 0) publisher = await tools.advertise({ topic: '/fanout', type: TYPE, qos: QOS, node });
   }
-  gateways.push(await ZenohGateway.start({ runtime, registry, endpoint: o.endpoint, createModule }));
+  gateways.push(await ZenohGateway.start({ runtime, registry, endpoint: o.endpoint, module: o.module }));
 }
 // every gateway connected and bridging /fanout (in: one remote publisher; out: the publisher's)
 const deadline = Date.now() + 60000;
 while (Date.now() < deadline) {
-  const ready = gateways.every((gw, i) => gw.connected && (i === 0 ? gw.out.has('/fanout') : gw.in.has('/fanout')));
+  const ready = gateways.every((gw, i) => gw.connected && gw.status()[i === 0 ? 'out' : 'in'].includes('/fanout'));
   if (ready) break;
   await sleep(100);
 }

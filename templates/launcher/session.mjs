@@ -92,7 +92,8 @@ export class Session {
   }
 
   refreshGraph(raw) {
-    this.graph = mergeRemote(mergeRemote(graphModel(raw, { toolsPid: this.tools ? this.tools.pid : undefined }), this.bridge), this.zenoh);
+    const hidden = this.zenoh ? [this.zenoh.pid] : [];
+    this.graph = mergeRemote(mergeRemote(graphModel(raw, { toolsPid: this.tools ? this.tools.pid : undefined, hiddenPids: hidden }), this.bridge), this.zenoh);
     this.emit('graph', this.graph);
   }
 
@@ -129,10 +130,9 @@ export class Session {
     if (this.zenoh) await this.disconnectZenoh();
     const { parseEndpoint } = await import('/wasm_js/bridges/zenoh/link.mjs');
     if (parseEndpoint(endpoint).scheme !== 'ws') throw new Error(`a page reaches a router through its WebSocket listener: ws/HOST:PORT, not ${endpoint}`);
-    const [{ ZenohGateway }, { default: createModule }] = await Promise.all([
-      import('/wasm_js/bridges/zenoh/gateway.mjs'), import(this.workspace.zenoh.module)]);
+    const { ZenohGateway } = await import('/wasm_js/bridges/zenoh/gateway.mjs');
     this.zenoh = await ZenohGateway.start({
-      runtime: this.runtime, registry: this.registry, endpoint, createModule,
+      runtime: this.runtime, registry: this.registry, endpoint, module: new URL(this.workspace.zenoh.module, location.href).href,
       log: (level, text) => (level === 'error' || level === 'warning' ? console.warn : console.log)(`[zenoh] ${text}`),
       onChange: () => {
         this.emit('zenoh', this.zenoh);

@@ -2,7 +2,7 @@
 // Licensed under the Apache License, Version 2.0
 
 /**
- * What the Zenoh gateway (gateway.mjs) carries, one object per topic or
+ * What the Zenoh gateway (core.mjs) carries, one object per topic or
  * service and direction, each restarted on a new session:
  * - TopicOut: local publishers -> a Zenoh publisher on the rmw_zenoh key;
  *   each sample carries the attachment (the local publisher's sequence
@@ -10,7 +10,7 @@
  *   messages wait (bounded in bytes, oldest dropped and counted), sent in
  *   order once the session is back; BEST_EFFORT ones are counted as lost.
  * - TopicIn: local subscriptions <- a Zenoh subscriber; CDR bytes published
- *   locally by the gateway's node.
+ *   locally by the gateway's node, one local publisher per remote one.
  * - ServiceServed: a local server answers rmw_zenoh clients' queries.
  * - ServiceProxied: local clients reach a remote rmw_zenoh server through a
  *   local server of the gateway's node.
@@ -18,8 +18,8 @@
  * @module bridges/zenoh/bridges
  */
 
-import { gidHex } from '../rosbridge/bus_link.mjs';
-import { dataKey, decodeAttachment, encodeAttachment, gidBytes, nowNs } from './keys.mjs';
+import { TakeMode } from './gateway_bus.mjs';
+import { dataKey, decodeAttachment, encodeAttachment, nowNs } from './keys.mjs';
 import { randomZid } from './session.mjs';
 
 /** An action's result is asked for when the goal starts: its call lasts as long as the goal (rmw_zenoh: no timeout). */
@@ -34,7 +34,16 @@ function callTimeout(gateway, service) {
   return LONG_CALL.test(service) ? LONG_CALL_MS : gateway.limits.callTimeoutMs;
 }
 
-/** Local publishers' messages, to Zenoh. */
+/** Bytes of the attachment written ahead of a payload in the session's scratch buffer (33, padded). */
+const ATTACHMENT_ROOM = 36;
+
+/**
+ * Local publishers' messages, to Zenoh: the gateway's subscription takes
+ * each message straight into zenoh-pico's memory, its attachment beside it,
+ * and puts it, in one zenoh-pico batch per wake-up (as few socket writes as
+ * the messages fit in). The attachment's sequence number is the local
+ * publisher's publication sequence number, its gid the publisher's.
+ */
 export class TopicOut {
   constructor(gateway, topic, { type, publishers }) {
     this.gateway = gateway;
@@ -44,10 +53,9 @@ export class TopicOut {
     this.key = dataKey(gateway.domain, topic, type);
     this.queue = [];
     this.queuedBytes = 0;
-    this.sequences = new Map(); // local publisher gid (bytes) -> last sequence sent
-    this.gids = new Map(); // local publisher gid words -> bytes
     this.zenoh = null;
-    this.stop = null;
+    this.sub = null;
+    this._view = null;
     const qos = publishers.map((e) => e.qos || {});
     this.reliable = qos.some((q) => q.reliability !== 'best_effort');
     // TRANSIENT_LOCAL publishers: an advanced publisher keeps their last samples for late remote subscribers
@@ -59,18 +67,12 @@ export class TopicOut {
       reliability: this.reliable ? 'reliable' : 'best_effort',
       durability: qos.length && qos.every((q) => q.durability === 'transient_local') ? 'transient_local' : 'volatile',
     };
-    const onBatch = (batch) => {
-      try {
-        this._local(batch);
-      } catch (error) {
-        gateway.log('error', `cannot send ${topic} to Zenoh: ${error.stack || error.message}`);
-      }
-    };
     gateway.log('debug', `${topic}: listening with ${JSON.stringify(tapQos)}`);
-    gateway.link.listen(topic, type, onBatch, tapQos).then((stop) => {
-      if (this.closed) stop();
-      else this.stop = stop;
-    }, (e) => gateway.log('error', `cannot bridge ${topic} to Zenoh: ${e.message}`));
+    try {
+      this.sub = gateway.bus.subscribe(topic, type, tapQos, () => this._drain());
+    } catch (e) {
+      gateway.log('error', `cannot bridge ${topic} to Zenoh: ${e.message}`);
+    }
   }
 
   /**
@@ -105,14 +107,10 @@ export class TopicOut {
     this.queue = [];
     this.queuedBytes = 0;
     if (waiting.length) this.gateway.log('debug', `${this.topic}: sending the ${waiting.length} messages that waited`);
-    this._batched(waiting.length, () => { for (const m of waiting) this._put(m); });
-  }
-
-  /** Run `fn`, which sends `count` messages, in one zenoh-pico batch when there are several. */
-  _batched(count, fn) {
     const session = this.gateway.session;
-    if (count > 1 && this.zenoh && session) session.batch(fn);
-    else fn();
+    if (session && session.up) session.batch(() => { for (const m of waiting) this._put(m); });
+    else for (const m of waiting) this._wait(m);
+    this._drain(); // what came meanwhile
   }
 
   detach() {
@@ -120,45 +118,82 @@ export class TopicOut {
     clearTimeout(this.graceTimer);
   }
 
-  _local(batch) {
-    this._batched(batch.length, () => this._send(batch));
-  }
-
-  _send(batch) {
-    for (const m of batch) {
-      const gid = this._gid(m.info.publisherGid);
-      const seq = (this.sequences.get(gid) || 0) + 1;
-      this.sequences.set(gid, seq);
-      const entry = { data: m.data, seq, timeNs: BigInt(Math.round(m.info.sourceTime * 1e6)), gid };
-      if (this.zenoh && !this.holding && this.gateway.session && this.gateway.session.up) this._put(entry);
-      else this._wait(entry, Boolean(this.holding && this.zenoh));
+  /** Take what the subscription has: to Zenoh, or to the queue while there is no publisher to send it. */
+  _drain() {
+    if (!this.sub || this.closed) return;
+    const session = this.gateway.session;
+    try {
+      if (this.zenoh && !this.holding && session && session.up) session.batch(() => this._sendAll(session));
+      else this._queueAll();
+    } catch (error) {
+      this.gateway.log('error', `cannot send ${this.topic} to Zenoh: ${error.stack || error.message}`);
     }
   }
 
-  /** A local publisher's gid (4 words) as 16 bytes, computed once per publisher. */
-  _gid(words) {
-    const key = `${words[0]},${words[1]},${words[2]},${words[3]}`;
-    let bytes = this.gids.get(key);
-    if (!bytes) {
-      bytes = gidBytes(gidHex(words));
-      this.gids.set(key, bytes);
+  _sendAll(session) {
+    const client = this.gateway.bus.client;
+    const ep = this.sub.ep;
+    const counters = this.gateway.counters;
+    for (;;) {
+      const len = client.takeBegin(ep, TakeMode.MESSAGE);
+      if (len < 0) return;
+      const at = session.scratch(ATTACHMENT_ROOM + len);
+      const heap = session.module.HEAPU8;
+      if (!client.takeCopy(heap, at + ATTACHMENT_ROOM)) continue;
+      this._attachment(heap, at, client.info);
+      const ret = this.zenoh.putAt(at + ATTACHMENT_ROOM, len, at, 33);
+      if (!this.announced) {
+        this.announced = true;
+        this.gateway.log('debug', `${this.topic}: first message out (${len} bytes, zenoh-pico ${ret})`);
+      }
+      if (ret === 0) counters.sent += 1;
+      else this._wait(this._entry(session.module.HEAPU8.slice(at + ATTACHMENT_ROOM, at + ATTACHMENT_ROOM + len), client.info));
+      if (!this.zenoh || !session.up) {
+        this._queueAll();
+        return;
+      }
     }
-    return bytes;
+  }
+
+  _queueAll() {
+    const client = this.gateway.bus.client;
+    let data;
+    while ((data = client.take(this.sub.ep, TakeMode.MESSAGE))) this._wait(this._entry(data, client.info));
+  }
+
+  /** rmw_zenoh's attachment of a message taken (info: the bus client's) at `at` of the module's memory. */
+  _attachment(heap, at, info) {
+    if (!this._view || this._view.buffer !== heap.buffer) this._view = new DataView(heap.buffer);
+    const v = this._view;
+    const ns = Math.round(info.sourceTime * 1e6);
+    const hi = Math.floor(ns / 4294967296);
+    v.setUint32(at, info.pubSeqLo >>> 0, true);
+    v.setUint32(at + 4, info.pubSeqHi >>> 0, true);
+    v.setUint32(at + 8, ns - hi * 4294967296, true);
+    v.setUint32(at + 12, hi, true);
+    heap[at + 16] = 16;
+    const g = info.gid;
+    for (let i = 0; i < 4; i++) v.setInt32(at + 17 + 4 * i, g[i], true);
+  }
+
+  /** A message kept to be sent later (no session, or a publisher not matched yet). */
+  _entry(data, info) {
+    return {
+      data, seq: info.pubSeqHi * 4294967296 + (info.pubSeqLo >>> 0), timeNs: Math.round(info.sourceTime * 1e6),
+      gid: new Uint8Array(Int32Array.from(info.gid).buffer),
+    };
   }
 
   _put(entry) {
-    const ret = this.zenoh.put(entry.data, encodeAttachment(entry.seq, entry.timeNs, entry.gid));
-    if (!this.announced) {
-      this.announced = true;
-      this.gateway.log('debug', `${this.topic}: first message out (${entry.data.length} bytes, zenoh-pico ${ret})`);
-    }
+    const ret = this.zenoh && this.gateway.session && this.gateway.session.up
+      ? this.zenoh.put(entry.data, encodeAttachment(entry.seq, entry.timeNs, entry.gid)) : -1;
     if (ret === 0) this.gateway.counters.sent += 1;
     else this._wait(entry);
   }
 
-  _wait(entry, briefly = false) {
+  _wait(entry) {
     // BEST_EFFORT messages wait only for a new publisher to match, not for a session
-    if (!this.reliable && !briefly) {
+    if (!this.reliable && !(this.holding && this.zenoh)) {
       this.gateway.counters.lost += 1;
       return;
     }
@@ -176,24 +211,46 @@ export class TopicOut {
   close() {
     this.closed = true;
     clearTimeout(this.graceTimer);
-    if (this.stop) this.stop();
+    if (this.sub) this.sub.close();
     if (this.zenoh) this.zenoh.close();
     this.zenoh = null;
   }
 }
 
-/** Remote publishers' messages, to local subscriptions. */
+/**
+ * Remote publishers' messages, to local subscriptions: a Zenoh subscriber,
+ * and one local publisher of the gateway's node per remote publisher (a
+ * remote publisher that goes is one publisher less alive for the local
+ * subscriptions: their liveliness changes, the graph follows). Samples are
+ * published by the first; the others stand for the other remote publishers
+ * (which one sent a sample, a token does not say).
+ */
 export class TopicIn {
-  constructor(gateway, topic, { type, qos }) {
+  constructor(gateway, topic, { type, qos, remotes = 1 }) {
     this.gateway = gateway;
     this.topic = topic;
     this.type = type;
     this.qos = qos;
     this.key = dataKey(gateway.domain, topic, type);
     this.zenoh = null;
-    this.ready = gateway.link.publisher(topic, type, qos);
-    this.ready.then((p) => { if (this.closed) p.release(); }, (e) => gateway.log('error', `cannot publish ${topic} locally: ${e.message}`));
+    this.proxies = [];
     this.noAttachment = 0;
+    this.setRemotes(remotes);
+  }
+
+  /** Have `count` local publishers (at least one while the bridge lives). */
+  setRemotes(count) {
+    const want = Math.max(1, count);
+    while (this.proxies.length < want && !this.closed) {
+      try {
+        this.proxies.push(this.gateway.bus.publisher(this.topic, this.type, this.qos));
+      } catch (e) {
+        this.gateway.log('error', `cannot publish ${this.topic} locally: ${e.message}`);
+        return;
+      }
+    }
+    // the first, which has published (its TRANSIENT_LOCAL history), goes last
+    while (this.proxies.length > want) this.proxies.pop().close();
   }
 
   attach(session) {
@@ -214,7 +271,7 @@ export class TopicIn {
   }
 
   _sample(sample) {
-    if (sample.kind !== 'put' || this.closed) return;
+    if (sample.kind !== 'put' || this.closed || !this.proxies.length) return;
     try {
       decodeAttachment(sample.attachment);
     } catch (error) {
@@ -224,13 +281,17 @@ export class TopicIn {
       return;
     }
     this.gateway.counters.received += 1;
-    this.ready.then((p) => p.publish(sample.payload)).catch((e) => this.gateway.log('error', `cannot publish ${this.topic} locally: ${e.message}`));
+    try {
+      this.proxies[0].publish(sample.payload);
+    } catch (e) {
+      this.gateway.log('error', `cannot publish ${this.topic} locally: ${e.message}`);
+    }
   }
 
   close() {
     this.closed = true;
     if (this.zenoh) this.zenoh.close();
-    this.ready.then((p) => p.release(), () => {});
+    for (const p of this.proxies.splice(0)) p.close();
   }
 }
 
@@ -268,7 +329,7 @@ export class ServiceServed {
       return;
     }
     try {
-      const response = await this.gateway.link.call(this.service, this.type, query.payload, callTimeout(this.gateway, this.service));
+      const response = await this.gateway.bus.call(this.service, this.type, query.payload, callTimeout(this.gateway, this.service));
       query.reply(this.key, response, encodeAttachment(request.sequence, nowNs(), request.gid));
       this.gateway.counters.calls += 1;
     } catch (error) {
@@ -292,8 +353,12 @@ export class ServiceProxied {
     this.key = dataKey(gateway.domain, service, type);
     this.sequence = 0n;
     this.gid = randomZid(); // the proxy's client gid: 16 random bytes, as a zid
-    this.server = gateway.link.serve(service, type, (requests) => { for (const r of requests) this._request(r); });
-    this.server.catch((e) => gateway.log('error', `cannot offer ${service} locally: ${e.message}`));
+    this.server = null;
+    try {
+      this.server = gateway.bus.serve(service, type, (request) => this._request(request));
+    } catch (e) {
+      gateway.log('error', `cannot offer ${service} locally: ${e.message}`);
+    }
   }
 
   attach() {}
@@ -301,7 +366,6 @@ export class ServiceProxied {
   detach() {}
 
   async _request(request) {
-    const server = await this.server;
     const session = this.gateway.session;
     if (!session || !session.up) {
       this.gateway.log('warning', `a local call of ${this.service} waits for no one: the Zenoh session is down`);
@@ -318,10 +382,11 @@ export class ServiceProxied {
       return;
     }
     this.gateway.counters.calls += 1;
-    await server.respond(request.id, ok.payload);
+    if (this.server && !this.closed) this.server.respond(request.id, ok.payload);
   }
 
   close() {
-    this.server.then((s) => s.close(), () => {});
+    this.closed = true;
+    if (this.server) this.server.close();
   }
 }

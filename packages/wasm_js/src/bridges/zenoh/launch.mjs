@@ -4,8 +4,9 @@
 /**
  * The Zenoh gateway of `colcon-wasm run|launch --zenoh ENDPOINT`
  * (`plan.zenoh`: {endpoint, domain, module}), started on the launch's
- * Runtime before its processes, in Node.js: the module is the zenoh-pico
- * build of the install's zenoh_wasm_gateway package.
+ * Runtime before its processes, in Node.js (in a worker of its own,
+ * gateway.mjs): the module is the zenoh-pico build of the install's
+ * zenoh_wasm_gateway package.
  *
  * @module bridges/zenoh/launch
  */
@@ -31,15 +32,13 @@ export async function nodeModuleFactory(path) {
  */
 export async function startZenoh(spec, runtime, registry, { out, err }) {
   const { ZenohGateway } = await import('./gateway.mjs');
-  const { NodeWebSocket } = await import('../rosbridge/ws_node.mjs');
   const log = (level, text) => {
     if (level === 'debug' && !process.env.COLCON_WASM_ZENOH_DEBUG) return;
     const tag = { info: 'INFO', warning: 'WARNING', error: 'ERROR', debug: 'DEBUG' }[level] || 'INFO';
     (level === 'error' || level === 'warning' ? err : out)(`[${tag}] [zenoh]: ${text}`);
   };
   const gateway = await ZenohGateway.start({
-    runtime, registry, endpoint: spec.endpoint, domain: spec.domain || 0,
-    createModule: await nodeModuleFactory(spec.module), WebSocket: NodeWebSocket, log,
+    runtime, registry, endpoint: spec.endpoint, domain: spec.domain || 0, module: spec.module, log,
   });
   return async () => {
     const s = gateway.status();

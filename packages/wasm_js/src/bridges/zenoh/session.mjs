@@ -93,6 +93,8 @@ export class ZenohSession {
     this.handlers = new Map(); // entity id -> {sample, query, reply, done}
     this.scheduled = false;
     this.stats = { samples: 0, queries: 0, replies: 0, handlerErrors: 0 };
+    this._scratch = 0;
+    this._scratchBytes = 0;
   }
 
   _host() {
@@ -198,13 +200,37 @@ export class ZenohSession {
     }
   }
 
-  /** Give a publisher entity `put(payload, attachment)`, calling the module's `put` export. */
+  /**
+   * Give a publisher entity `put(payload, attachment)`, calling the module's
+   * `put` export, and `putAt(ptr, length, attachmentPtr, attachmentLength)`
+   * for bytes already in the module's memory (see scratch()).
+   */
   _withPut(entity, handle, put) {
+    const fn = this.module[put];
     entity.put = (payload, attachment = null) => {
       if (!this.up || entity.closed) return -1;
-      return this._withBytes(payload, attachment, (p, n, a, m) => this.module[put](handle, p, n, a, m));
+      return this._withBytes(payload, attachment, (p, n, a, m) => fn(handle, p, n, a, m));
     };
+    entity.putAt = (p, n, a, m) => (this.up && !entity.closed ? fn(handle, p, n, a, m) : -1);
     return entity;
+  }
+
+  /**
+   * A buffer of at least `bytes` in the module's memory, kept for the next
+   * calls (one per session: valid until the next scratch()); its address.
+   * Re-read `module.HEAPU8` after it: the memory may have grown.
+   */
+  scratch(bytes) {
+    if (bytes > this._scratchBytes) {
+      if (this._scratch) this.module._free(this._scratch);
+      this._scratchBytes = Math.max(bytes, 2 * this._scratchBytes, 4096);
+      this._scratch = this.module._malloc(this._scratchBytes);
+      if (!this._scratch) {
+        this._scratchBytes = 0;
+        throw new Error(`zenoh-pico's module cannot allocate ${bytes} bytes`);
+      }
+    }
+    return this._scratch;
   }
 
   _string(text) {
