@@ -14,6 +14,7 @@
  * @module bridges/zenoh/gateway
  */
 
+import { PROC_KIND_TOOLS } from '../../layout.mjs';
 import { ProgramWorker } from '../../platform.mjs';
 import { parseEndpoint } from './link.mjs';
 
@@ -21,6 +22,18 @@ export { GATEWAY_LIMITS, GATEWAY_NODE } from './core.mjs';
 
 /** How long close() waits for the worker to close the session (its Close to the router). */
 const CLOSE_WAIT_MS = 2000;
+
+/**
+ * A bus process id for the gateway's worker: Runtime.helperProcess, or, from
+ * a runtime older than it (an install space's, built before), the same
+ * with the runtime's own pid allocation and clean-up.
+ */
+async function helperProcess(runtime, name) {
+  if (typeof runtime.helperProcess === 'function') return runtime.helperProcess(name);
+  const pid = await runtime._allocPid(PROC_KIND_TOOLS);
+  let released = null;
+  return { pid, release: () => (released = released || runtime._reap(pid, null)) };
+}
 
 /**
  * The Zenoh gateway of a runtime.
@@ -44,7 +57,7 @@ export class ZenohGateway {
   static async start(options) {
     parseEndpoint(options.endpoint);
     const runtime = options.runtime;
-    const helper = await runtime.helperProcess('zenoh');
+    const helper = await helperProcess(runtime, 'zenoh');
     let worker;
     try {
       worker = await ProgramWorker.start(new URL('./gateway_worker.mjs', import.meta.url).href,
