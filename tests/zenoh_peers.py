@@ -47,10 +47,11 @@ def _wait_listening(port, timeout=20):
 class ZenohRouter:
     """eclipse-zenoh's router in a child process, with a TCP and a WebSocket listener."""
 
-    def __init__(self, tcp_port=None, ws_port=None):
-        """Pick the ports; start() runs it."""
+    def __init__(self, tcp_port=None, ws_port=None, config=None):
+        """Pick the ports; start() runs it; `config`: more settings (key: JSON value)."""
         self.tcp_port = tcp_port or free_port()
         self.ws_port = ws_port or free_port()
+        self.config = dict(config or {})
         self.process = None
 
     @property
@@ -66,7 +67,7 @@ class ZenohRouter:
     def start(self):
         """Start the router and wait for both listeners."""
         self.process = subprocess.Popen(
-            [sys.executable, __file__, 'router', self.tcp, self.ws],
+            [sys.executable, __file__, 'router', json.dumps(self.config), self.tcp, self.ws],
             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
         _wait_listening(self.tcp_port)
         _wait_listening(self.ws_port)
@@ -85,12 +86,14 @@ class ZenohRouter:
         self.kill()
 
 
-def _router_main(endpoints):
+def _router_main(config, endpoints):
     import zenoh
     conf = zenoh.Config()
     conf.insert_json5('mode', '"router"')
     conf.insert_json5('listen/endpoints', json.dumps(endpoints))
     conf.insert_json5('scouting/multicast/enabled', 'false')
+    for key, value in json.loads(config).items():
+        conf.insert_json5(key, json.dumps(value))
     session = zenoh.open(conf)
     print(f'router {session.info.zid()} on {endpoints}', flush=True)
     while True:
@@ -285,4 +288,4 @@ class RmwZenohPeer:
 
 if __name__ == '__main__':
     if sys.argv[1:2] == ['router']:
-        _router_main(sys.argv[2:])
+        _router_main(sys.argv[2], sys.argv[3:])

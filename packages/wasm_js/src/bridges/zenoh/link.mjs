@@ -19,6 +19,55 @@
 export const READ_NOTHING = -1;
 export const READ_CLOSED = -2;
 
+/** A batch that holds a Zenoh Fragment transport message: its first byte's message id, and its R (reliable) flag. */
+const FRAGMENT_ID = 0x06;
+const RELIABLE_FLAG = 0x20;
+
+/**
+ * zenoh-pico 1.9 sends each fragment of a message too large for one batch
+ * alone in its batch, but without the R flag of a reliable message (its
+ * __unsafe_z_serialize_zenoh_fragment passes `reliability ==
+ * Z_RELIABILITY_RELIABLE`, a bool, for a z_reliability_t whose RELIABLE is
+ * 0): the router then takes the message for best effort, and drops it when
+ * the way to a subscriber is congested. Every message the gateway sends is
+ * reliable (zenoh-pico's default reliability: zenoh_session.c sets no
+ * other), and its sequence number is of the reliable channel: the flag is
+ * set here.
+ */
+export function markFragmentReliable(batch) {
+  if (batch.length && (batch[0] & 0x1f) === FRAGMENT_ID) batch[0] |= RELIABLE_FLAG;
+  return batch;
+}
+
+/** An InitAck transport message: its id and flags (A: an ack; S: resolution and batch size follow the zid). */
+const INIT_ID = 0x01;
+const INIT_ACK_FLAG = 0x20;
+const INIT_SIZE_FLAG = 0x40;
+/** The bytes of a batch's length on a stream link (tcp/), which count in the batch size. */
+const STREAM_LENGTH_BYTES = 2;
+
+/**
+ * On a tcp/ endpoint, give zenoh-pico the router's batch size less the 2
+ * bytes of each batch's length: zenoh-pico sees a datagram link (its
+ * WebSocket one) and fills batches to the size agreed, but on a stream
+ * link that size counts the length the link writes before each batch (the
+ * router's TCP batches are 49152 bytes, its limit with the length: a
+ * message fragmented into 49152-byte batches closed the session). The
+ * router's InitAck: id and flags, version, whatami and zid length (its
+ * high nibble + 1), zid, then with S the resolution and the batch size
+ * (u16, little-endian).
+ */
+export function fitInitAckToStream(batch) {
+  if (batch.length < 3 || (batch[0] & 0x1f) !== INIT_ID || !(batch[0] & INIT_ACK_FLAG) || !(batch[0] & INIT_SIZE_FLAG)) return batch;
+  const at = 3 + (batch[2] >> 4) + 1 + 1; // header, version, whatami/zid length, zid, resolution
+  if (at + 2 > batch.length) return batch;
+  const size = batch[at] | (batch[at + 1] << 8);
+  const fitted = size - STREAM_LENGTH_BYTES;
+  batch[at] = fitted & 0xff;
+  batch[at + 1] = fitted >> 8;
+  return batch;
+}
+
 /**
  * Parse a Zenoh endpoint as the user gives it (`ws/127.0.0.1:7447`).
  * @param {string} endpoint
@@ -171,7 +220,7 @@ export class ZenohLink {
     while (data.length - at >= 2) {
       const size = data[at] | (data[at + 1] << 8);
       if (data.length - at - 2 < size) break;
-      this._received(socket, new Uint8Array(data.subarray(at + 2, at + 2 + size)));
+      this._received(socket, fitInitAckToStream(new Uint8Array(data.subarray(at + 2, at + 2 + size))));
       at += 2 + size;
     }
     socket.stream = at < data.length ? Buffer.from(data.subarray(at)) : null;
@@ -218,6 +267,7 @@ export class ZenohLink {
     if (!socket || socket.closed || !socket.transport) return -1;
     this.stats.batchesOut += 1;
     this.stats.bytesOut += bytes.length;
+    markFragmentReliable(bytes);
     if (this.endpoint.scheme === 'tcp') {
       const framed = Buffer.allocUnsafe(bytes.length + 2);
       framed[0] = bytes.length & 0xff;
