@@ -29,7 +29,10 @@ import { RecordingProcess } from './recording_process.mjs';
 const MAX_QUEUED_BYTES = 256 * 1024 * 1024;
 /** History of the recorder's subscriptions: bursts between two wake-ups are kept. */
 const DEPTH = 1000;
-/** A chunk is closed at this size of its records (as the launcher's own chunks), */
+/**
+ * A chunk is closed at this size of its records (as the launcher's own
+ * chunks): small enough that its CRC and its write read it from the cache
+ * (4 MiB chunks cost more CPU here), */
 const CHUNK_BYTES = 1024 * 1024;
 /** or this long after its first message (a crash loses at most that much). */
 const FLUSH_MS = 1000;
