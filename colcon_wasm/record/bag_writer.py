@@ -172,16 +172,22 @@ class BagWriter:
         """Return the Schema and Channel records ``add_topic`` made since the last call."""
         return self._sink.take_captured() if self._host else b''
 
-    def host_wrote(self, report):
+    def host_wrote(self, reports):
         """
         Take note of a write of the host into the file (a WRITTEN frame).
 
-        :param report: ``{"kind": "records", "offset", "end"}`` or ``{"kind":
-          "chunk", "offset", "chunkLength", "indexLength", "size", "start",
-          "end", "messages", "channels"}`` (colcon_wasm/record/frames.py)
+        :param reports: what one write put into the file, in file order, a
+          report per record run or chunk: ``{"kind": "records", "offset",
+          "end"}`` or ``{"kind": "chunk", "offset", "chunkLength",
+          "indexLength", "size", "start", "end", "messages", "channels"}``
+          (colcon_wasm/record/frames.py)
         """
         if not self._host or self.failed:
             return
+        for report in reports:
+            self._host_wrote_one(report)
+
+    def _host_wrote_one(self, report):
         if report['kind'] != 'chunk':
             self._host_good = report['end']
             return

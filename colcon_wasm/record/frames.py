@@ -13,9 +13,9 @@ Recording (host to launcher):
 - ``CHANNEL``: JSON ``{"id", "topic", "type", "qos": [profile, ...]}``, the
   offered QoS of the topic's publishers in the JS form of qos.mjs; the host
   subscribes once the launcher answered ``READY``;
-- ``WRITTEN``: JSON, what the host's recording worker wrote into the bag
-  itself (chunks without compression, bridges/record/file_sink.mjs):
-  ``{"kind": "records", "offset", "end"}`` or ``{"kind": "chunk",
+- ``WRITTEN``: JSON, a list of what one write of the host put into the bag
+  itself (chunks without compression, bridges/record/file_sink.mjs), in
+  file order: ``{"kind": "records", "offset", "end"}`` or ``{"kind": "chunk",
   "offset", "chunkLength", "indexLength", "size", "start", "end" (ns, as
   text), "messages", "channels": [[id, count, index length], ...]}``;
 - ``FAILED``: JSON ``{"code", "message", "kept"}``: a write of the host

@@ -57,6 +57,12 @@ if (mode === 'file') {
   });
   sink.writeRecords(new Uint8Array(readFileSync(recordsFile)));
 }
+/** file mode: chunks go to the sink two at a time, as the recording worker batches them */
+let batch = [];
+const writeBatch = () => {
+  if (batch.length) sink.writeChunks(batch);
+  batch = [];
+};
 const recording = new ChunkBuilder(recorder, {
   chunkBytes: 1 << 20, flushMs: 60000,
   sink: (chunk) => {
@@ -64,7 +70,8 @@ const recording = new ChunkBuilder(recorder, {
     if (sink) {
       // as the recording worker posts it (a copy: the builder reuses its buffer at once)
       const records = chunk.records.slice();
-      sink.writeChunk({ ...chunk, records, crc: zlib.crc32(records) }, () => {});
+      batch.push({ ...chunk, records, crc: zlib.crc32(records), release: () => {} });
+      if (batch.length === 2) writeBatch();
       return true;
     }
     frames.push(chunkHead({ ...chunk, length: chunk.records.length }, chunk.records.length + chunk.indexes.length),
@@ -97,7 +104,10 @@ for (let round = 0; round < 6; round++) {
 }
 recording.drain();
 recording.flush();
-if (sink) await sink.drained();
+if (sink) {
+  writeBatch();
+  await sink.drained();
+}
 if (mode === 'pipe') {
   let size = 0;
   for (const f of frames) size += f.length;

@@ -3,8 +3,8 @@
 
 /**
  * The bag file, written by the Node host itself (`--record` without
- * compression): each chunk the recording worker closes goes to the file in
- * one `writev`, as its Chunk record (uncompressed, with the CRC-32 of its
+ * compression): each batch of chunks the recording worker closes goes to
+ * the file in one `writev`, each chunk as its Chunk record (uncompressed, with the CRC-32 of its
  * records, which the worker computed) and its MessageIndex records, at the
  * file's shared offset. The launcher wrote the magic and the Header before,
  * writes the summary after, and hands over the Schema and Channel records it
@@ -17,7 +17,8 @@
  * bounded (`maxQueuedBytes`), beyond it chunks are dropped and counted.
  * No byte of a message is copied on its way from the chunk buffer to the
  * file, and nothing goes through the launcher's pipe but a small report per
- * write (`onWritten`), from which the launcher builds the chunk indexes.
+ * write (`onWritten`, a line per chunk), from which the launcher builds the
+ * chunk indexes.
  *
  * @module bridges/record/file_sink
  */
@@ -34,7 +35,8 @@ export class FileSink {
    * @param {number} options.fd the bag, open for writing at `offset` (the launcher's descriptor)
    * @param {number} options.offset where the next record goes (after the launcher's Header)
    * @param {number} options.maxQueuedBytes chunks beyond this many bytes waiting are dropped
-   * @param {function(object): void} options.onWritten gets a report after each write
+   * @param {function(object[]): void} options.onWritten gets the reports of each write (one per
+   *   record or chunk written)
    * @param {function({code: string, message: string, kept: number}): void} options.onFailed
    *   a write failed: the file was cut back to `kept` bytes, nothing more is written
    */
@@ -56,38 +58,39 @@ export class FileSink {
   /** Write records the launcher built (Schema, Channel): whole, before any chunk asked for later. */
   writeRecords(bytes) {
     if (!bytes.length || this.failed) return;
-    this._enqueue([bytes], (at) => ({ kind: 'records', offset: at, end: at + bytes.length }));
+    this._enqueue([bytes], (at) => [{ kind: 'records', offset: at, end: at + bytes.length }]);
   }
 
   /**
-   * Write a closed chunk of the recording worker.
+   * Write closed chunks of the recording worker, in this order, in one go.
+   * Each gets its `release()` called once its buffers are no longer needed.
    * @param {{records: Uint8Array, indexes: Uint8Array, crc: number, start: bigint, end: bigint,
-   *   messages: number, channels: number[][]}} chunk
-   * @param {function(): void} done called once its buffers are no longer needed
-   * @returns {boolean} false when it was dropped (a failed file, or too much waiting)
+   *   messages: number, channels: number[][], release: function(): void}[]} chunks
+   * @returns {boolean} false when they were dropped (a failed file, or too much waiting)
    */
-  writeChunk(chunk, done) {
-    const { records, indexes } = chunk;
-    if (this.failed || this.queuedBytes + records.length > this.maxQueuedBytes) {
+  writeChunks(chunks) {
+    const done = () => { for (const c of chunks) c.release(); };
+    let size = 0;
+    for (const c of chunks) size += c.records.length;
+    if (this.failed || this.queuedBytes + size > this.maxQueuedBytes) {
       done();
       return false;
     }
-    const head = new Uint8Array(CHUNK_HEAD);
-    const v = new DataView(head.buffer);
-    v.setUint8(0, OP_CHUNK);
-    v.setBigUint64(1, BigInt(CHUNK_HEAD - 9 + records.length), true);
-    v.setBigUint64(9, chunk.start, true);
-    v.setBigUint64(17, chunk.end, true);
-    v.setBigUint64(25, BigInt(records.length), true);
-    v.setUint32(33, chunk.crc, true);
-    v.setUint32(37, 0, true); // compression: none ('')
-    v.setBigUint64(41, BigInt(records.length), true);
-    const size = records.length;
-    const indexLength = indexes.length;
-    this._enqueue([head, records, indexes], (at) => ({
-      kind: 'chunk', offset: at, chunkLength: CHUNK_HEAD + size, indexLength, size, crc: chunk.crc,
-      start: String(chunk.start), end: String(chunk.end), messages: chunk.messages,
-      channels: chunk.channels,
+    const parts = [];
+    const layout = [];
+    for (const chunk of chunks) {
+      const { records, indexes } = chunk;
+      parts.push(chunkHead(chunk), records, indexes);
+      layout.push({
+        chunkLength: CHUNK_HEAD + records.length, indexLength: indexes.length, size: records.length,
+        crc: chunk.crc, start: String(chunk.start), end: String(chunk.end), messages: chunk.messages,
+        channels: chunk.channels,
+      });
+    }
+    this._enqueue(parts, (at) => layout.map((l) => {
+      const report = { kind: 'chunk', offset: at, ...l };
+      at += l.chunkLength + l.indexLength;
+      return report;
     }), done);
     return true;
   }
@@ -157,6 +160,22 @@ export class FileSink {
       for (const resolve of this._idle.splice(0)) resolve();
     });
   }
+}
+
+/** The head of an uncompressed Chunk record (its records and indexes follow). */
+function chunkHead(chunk) {
+  const length = chunk.records.length;
+  const head = new Uint8Array(CHUNK_HEAD);
+  const v = new DataView(head.buffer);
+  v.setUint8(0, OP_CHUNK);
+  v.setBigUint64(1, BigInt(CHUNK_HEAD - 9 + length), true);
+  v.setBigUint64(9, chunk.start, true);
+  v.setBigUint64(17, chunk.end, true);
+  v.setBigUint64(25, BigInt(length), true);
+  v.setUint32(33, chunk.crc, true);
+  v.setUint32(37, 0, true); // compression: none ('')
+  v.setBigUint64(41, BigInt(length), true);
+  return head;
 }
 
 /** The parts after the first `skip` bytes (a writev that wrote part of them). */

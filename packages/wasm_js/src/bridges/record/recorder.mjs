@@ -77,7 +77,7 @@ export class Recorder {
     if (this.file) {
       this.bag = new FileSink({
         fd: this.file.fd, offset: this.file.offset, maxQueuedBytes: MAX_QUEUED_BYTES,
-        onWritten: (report) => this._send(jsonFrame(Kind.WRITTEN, report)),
+        onWritten: (reports) => this._send(jsonFrame(Kind.WRITTEN, reports)),
         onFailed: (failure) => {
           this._send(jsonFrame(Kind.FAILED, failure));
           this.process.halt().catch(() => {});
@@ -86,7 +86,7 @@ export class Recorder {
     }
     this.process = await RecordingProcess.start(this.runtime, {
       crc: !!this.file, chunkBytes: CHUNK_BYTES, flushMs: FLUSH_MS,
-      onChunk: (chunk) => (this.bag ? this._write(chunk) : this._chunk(chunk)),
+      onChunks: (chunks) => (this.bag ? this._write(chunks) : chunks.forEach((c) => this._chunk(c))),
     });
     this.node = await this.process.node('rosbag2_recorder');
     this.runtime.onGraphChange(() => this._scan());
@@ -151,10 +151,10 @@ export class Recorder {
     return !this.topics || this.topics.has(topic);
   }
 
-  /** Write a chunk of the recording worker into the bag; past the bound it is dropped and counted. */
-  _write(chunk) {
-    const written = this.bag.writeChunk(chunk, chunk.release);
-    if (!written && !this.bag.failed) this.dropped += chunk.messages;
+  /** Write a batch of chunks of the recording worker into the bag; past the bound they are dropped and counted. */
+  _write(chunks) {
+    const written = this.bag.writeChunks(chunks);
+    if (!written && !this.bag.failed) for (const c of chunks) this.dropped += c.messages;
   }
 
   /** Write frames to the pipe (nothing once it broke). */

@@ -5,7 +5,8 @@
  * The main thread's handle of the recording worker (./recording_worker.mjs,
  * Node.js only): it starts the worker as a bus process of the Runtime,
  * sends it requests (each followed by a ring of its doorbell, since the
- * worker reads them between waits) and passes its chunks on.
+ * worker reads them between waits) and passes its chunks on, a batch at a
+ * time.
  *
  * @module bridges/record/recording_process
  */
@@ -18,6 +19,10 @@ import { ChunkPool } from './chunk_pool.mjs';
 const COALESCE_MS = 5;
 /** Chunk buffers shared with the worker: what may wait for the disk without an allocation. */
 const POOL_SLOTS = 16;
+/** Closed chunks posted together (one message, one write, one report), */
+const BATCH_CHUNKS = 4;
+/** unless the first of them waited this long. */
+const BATCH_MS = 50;
 
 export class RecordingProcess {
   /**
@@ -27,12 +32,12 @@ export class RecordingProcess {
    * @param {boolean} options.crc add the CRC-32 of each chunk's records (`crc`)
    * @param {number} options.chunkBytes chunk size
    * @param {number} options.flushMs a chunk is closed at the latest this long after its first message
-   * @param {function(object): void} options.onChunk gets each closed chunk: {records:
-   *   Uint8Array, indexes: Uint8Array, crc, channels, start, end, messages, release}; call
-   *   `release()` once its bytes are written
+   * @param {function(object[]): void} options.onChunks gets the closed chunks, a batch at a
+   *   time, in the order they closed: each {records: Uint8Array, indexes: Uint8Array, crc,
+   *   channels, start, end, messages, release}; call `release()` once its bytes are written
    * @returns {Promise<RecordingProcess>}
    */
-  static async start(runtime, { crc, chunkBytes, flushMs, onChunk }) {
+  static async start(runtime, { crc, chunkBytes, flushMs, onChunks }) {
     const pid = await runtime._allocPid(PROC_KIND_TOOLS);
     const { port1, port2 } = new MessageChannel();
     const requests = new SharedArrayBuffer(4);
@@ -42,14 +47,14 @@ export class RecordingProcess {
       workerData: {
         handle: runtime.bus.handle, pid, control: port2, requests, crc, chunkBytes, flushMs,
         pool: { sab: pool.sab, slots: pool.slots, slotBytes: pool.slotBytes },
-        coalesceMs: COALESCE_MS,
+        coalesceMs: COALESCE_MS, batchChunks: BATCH_CHUNKS, batchMs: BATCH_MS,
       },
       transferList: [port2],
     });
-    return new RecordingProcess(runtime, pid, worker, port1, new Int32Array(requests), pool, onChunk);
+    return new RecordingProcess(runtime, pid, worker, port1, new Int32Array(requests), pool, onChunks);
   }
 
-  constructor(runtime, pid, worker, port, requests, pool, onChunk) {
+  constructor(runtime, pid, worker, port, requests, pool, onChunks) {
     this.runtime = runtime;
     /** The recording worker's bus process id. */
     this.pid = pid;
@@ -73,12 +78,13 @@ export class RecordingProcess {
     this.error = null;
     worker.on('error', (e) => { this.error = e; });
     worker.on('message', (m) => {
-      if (m.type === 'chunk') {
-        const records = m.slot >= 0 ? pool.bytes(m.slot).subarray(0, m.length) : new Uint8Array(m.records, 0, m.length);
-        onChunk({
-          ...m, records, indexes: new Uint8Array(m.indexes),
-          release: () => { if (m.slot >= 0) pool.release(m.slot); },
-        });
+      if (m.type === 'chunks') {
+        onChunks(m.chunks.map((c) => ({
+          ...c,
+          records: c.slot >= 0 ? pool.bytes(c.slot).subarray(0, c.length) : new Uint8Array(c.records, 0, c.length),
+          indexes: new Uint8Array(c.indexes),
+          release: () => { if (c.slot >= 0) pool.release(c.slot); },
+        })));
         return;
       }
       const p = this._pending.get(m.id);

@@ -13,16 +13,24 @@
  * With `crc`, it adds the CRC-32 of each chunk's records (zlib's C code)
  * while they are in its cache.
  *
- * After a wake-up it naps `coalesceMs` before the next wait, so a 1 kHz
- * topic wakes it a few hundred times a second rather than a thousand; the
- * writers' histories hold what arrives meanwhile.
+ * While messages come it drains, naps `coalesceMs` and drains again, with
+ * no doorbell: a steady 1 kHz topic costs it one timed wake-up per nap
+ * (and its publishers no futex wake per message); the writers' histories
+ * hold what arrives meanwhile. Only when a drain found nothing does it
+ * wait on the doorbell.
+ *
+ * Closed chunks are posted in batches (`batchChunks`, or once the oldest
+ * waited `batchMs`, or at once when a chunk closed on its time): the main
+ * thread then writes a batch in one `writev` and the launcher hears of it
+ * in one report, which keeps the per-chunk cost of the threads that do not
+ * record low.
  *
  * Control comes through a MessagePort read synchronously between waits
  * (`receiveMessageOnPort`, about 20 µs a call: only when a shared counter
  * says a request was posted); whoever posts counts it and rings this
  * process' doorbell. Each request is
  * answered on `parentPort` ({type: 'reply', id, value} or {error}); chunks
- * are {type: 'chunk', ...}.
+ * come as {type: 'chunks', chunks: [...]}.
  *
  * @module bridges/record/recording_worker
  */
@@ -33,7 +41,9 @@ import zlib from 'node:zlib';
 import { ChunkBuilder } from './chunk_builder.mjs';
 import { ChunkPool } from './chunk_pool.mjs';
 
-const { handle, pid, control, requests, pool, crc, chunkBytes, flushMs, coalesceMs } = workerData;
+const {
+  handle, pid, control, requests, pool, crc, chunkBytes, flushMs, coalesceMs, batchChunks, batchMs,
+} = workerData;
 /** requests[0] counts the requests posted: the port is read only when it moved */
 const posted = new Int32Array(requests);
 let served = 0;
@@ -51,15 +61,32 @@ const endpoints = new Set();
 let halted = false;
 let running = true;
 
-/** Post a closed chunk: its pool slot (or its own buffer, transferred), its indexes. */
+/** closed chunks not posted yet, and when the first of them closed (ms) */
+let batch = [];
+let transfers = [];
+let batchSince = Infinity;
+
+/** Keep a closed chunk for the next batch: its pool slot (or its own buffer), its indexes. */
 function postChunk(chunk) {
   const own = chunk.slot < 0 ? chunk.records.buffer : null;
-  const transfer = own ? [own, chunk.indexes.buffer] : [chunk.indexes.buffer];
-  post({
-    type: 'chunk', slot: chunk.slot, records: own, length: chunk.records.length,
+  if (own) transfers.push(own);
+  transfers.push(chunk.indexes.buffer);
+  batch.push({
+    slot: chunk.slot, records: own, length: chunk.records.length,
     indexes: chunk.indexes.buffer, crc: crc32 ? crc32(chunk.records) : 0,
     channels: chunk.channels, start: chunk.start, end: chunk.end, messages: chunk.messages,
-  }, transfer);
+  });
+  if (batch.length === 1) batchSince = performance.now();
+  if (batch.length >= batchChunks) postBatch();
+}
+
+/** Post the closed chunks kept so far (in the order they closed). */
+function postBatch() {
+  if (batch.length === 0) return;
+  post({ type: 'chunks', chunks: batch }, transfers);
+  batch = [];
+  transfers = [];
+  batchSince = Infinity;
 }
 
 /** Let go of every subscription (the ones it took are in the chunks posted). */
@@ -74,10 +101,26 @@ function unsubscribe() {
   return lost;
 }
 
-/** Copy what came; close the chunk when its time is up. */
+/**
+ * Copy what came; close the chunk when its time is up (and post it at once:
+ * nothing more is coming soon), post a batch that waited long enough.
+ * @returns {number} how many messages were copied
+ */
 function record() {
-  builder.drain();
-  if (builder.flushDue()) builder.flush();
+  const copied = builder.drain();
+  if (builder.flushDue()) {
+    builder.flush();
+    postBatch();
+  } else if (performance.now() - batchSince >= batchMs) {
+    postBatch();
+  }
+  return copied;
+}
+
+/** How long the loop may wait before `record()` has something to close or post (ms). */
+function due() {
+  const at = Math.min(builder.deadline, batchSince + batchMs);
+  return at === Infinity ? Infinity : Math.max(0, at - performance.now());
 }
 
 const operations = {
@@ -106,6 +149,7 @@ const operations = {
   stop() {
     record();
     builder.flush();
+    postBatch();
     const lost = unsubscribe();
     running = false;
     return { lost };
@@ -120,24 +164,28 @@ function serve({ id, op, args }) {
   }
 }
 
-while (running) {
-  client.register();
-  // the doorbell before the port: a request posted (and rung) after this read
-  // changes the doorbell, so the wait below returns at once
-  const bell = client.bell();
+/** Serve the requests posted since the last look (the counter moved). */
+function serveRequests() {
   const count = Atomics.load(posted, 0);
-  if (count !== served) {
-    served = count;
-    for (let m; running && (m = receiveMessageOnPort(control));) serve(m.message);
+  if (count === served) return;
+  served = count;
+  for (let m; running && (m = receiveMessageOnPort(control));) serve(m.message);
+}
+
+while (running) {
+  serveRequests();
+  if (!running) break;
+  if (record() > 0) {
+    // messages are coming: take the next ones after a nap, with no doorbell
+    Atomics.wait(nap, 0, 0, Math.min(coalesceMs, due()));
+    continue;
   }
-  if (!running) {
-    client.unregister();
-    break;
-  }
-  record();
-  const due = builder.deadline === Infinity ? Infinity : Math.max(0, builder.deadline - performance.now());
-  client.sleep(bell, due);
+  client.register();
+  // the doorbell before the last look: a message or a request (rung) that
+  // comes after this read changes the doorbell, so the wait returns at once
+  const bell = client.bell();
+  serveRequests();
+  if (running && record() === 0) client.sleep(bell, due());
   client.unregister();
-  if (coalesceMs > 0) Atomics.wait(nap, 0, 0, coalesceMs);
 }
 control.close();
