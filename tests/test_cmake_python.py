@@ -19,10 +19,10 @@ import os
 from pathlib import Path
 import re
 import shutil
-import subprocess
 import sys
 
 from humble_build import humble_build
+from launch_until import run_until
 import pytest
 from rclcpp_build import rclcpp_build
 
@@ -60,16 +60,15 @@ def test_the_manifest_lists_the_script_and_the_module(overlay):
 
 def test_the_script_runs_beside_a_cpp_subscriber(overlay):
     env = dict(os.environ, COLCON_WASM_PYODIDE=str(PYODIDE))
-    result = subprocess.run(
-        [str(Path(sys.executable).parent / 'colcon-wasm'), 'launch', '--install-base',
-         str(overlay.install), '--duration', '30', 'py_cmake_mixed/mixed_talker.py', SUBSCRIBER],
-        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env, timeout=150)
-    out = result.stdout
+    heard = r'\[subscriber_member_function-2\] .*\[minimal_subscriber\]: ' + HEARD
+    code, out = run_until(
+        [Path(sys.executable).parent / 'colcon-wasm', 'launch', '--install-base',
+         overlay.install, '--duration', '30', 'py_cmake_mixed/mixed_talker.py', SUBSCRIBER],
+        until=lambda out: re.search(heard, out), timeout=150, env=env)
     assert re.search(r'\[mixed_talker\.py-1\] \[INFO\] \[[\d.]+\] \[mixed_talker\]: '
                      r'Publishing: "Hello from an ament_cmake_python package: 1"', out), \
         out[-6000:]
-    assert re.search(r'\[subscriber_member_function-2\] .*\[minimal_subscriber\]: ' + HEARD,
-                     out), out[-6000:]
+    assert re.search(heard, out), out[-6000:]
 
 
 def test_the_page_runs_the_script_beside_a_cpp_subscriber(overlay):

@@ -13,9 +13,10 @@ import os
 from pathlib import Path
 import re
 import shutil
-import subprocess
 
 import demo_build
+from launch_until import finished
+from launch_until import run_until
 import pytest
 
 REPO = Path(__file__).resolve().parents[1]
@@ -32,20 +33,19 @@ def install():
     return demo_build.demo_install()
 
 
-def colcon_wasm(*args, timeout=180):
-    """Run colcon-wasm with Pyodide from tests/js; returns (status, output: stdout and stderr)."""
+def colcon_wasm(*args, timeout=180, until=None):
+    """
+    Run colcon-wasm with Pyodide from tests/js; returns (status, output: stdout and stderr).
+
+    :param until: ``until(output so far)`` true stops it (tests/launch_until.py)
+    """
     env = dict(os.environ, COLCON_WASM_PYODIDE=str(PYODIDE))
-    result = subprocess.run([str(demo_build.venv_tool('colcon-wasm')), *map(str, args)],
-                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                            env=env, timeout=timeout)
-    return result.returncode, result.stdout
+    return run_until([demo_build.venv_tool('colcon-wasm'), *args], until=until,
+                     timeout=timeout, env=env)
 
 
-def test_python_and_cpp_nodes_hear_each_other_and_a_python_crash_is_contained(install):
-    code, out = colcon_wasm(
-        'launch', '--install-base', install, '--duration', 45,
-        '--python', DATA / 'talker.py', '--python', DATA / 'listener.py',
-        '--python', DATA / 'crasher.py', 'demo_nodes/talker', 'demo_nodes/listener')
+def _heard_and_died(out):
+    """Lines (indexes) where each listener heard the other language's talker, the crash."""
     lines = out.splitlines()
     # Python talker -> C++ listener, C++ talker -> Python listener (byte-exact CDR both ways)
     cpp_heard = [i for i, line in enumerate(lines)
@@ -53,6 +53,26 @@ def test_python_and_cpp_nodes_hear_each_other_and_a_python_crash_is_contained(in
     py_heard = [i for i, line in enumerate(lines)
                 if re.match(r'\[listener-4\] .*\[py_listener\]: I heard: \[Hello World: (\d+)\] '
                             r'count=\1$', line)]
+    died = [i for i, line in enumerate(lines) if line.startswith(
+        '[ERROR] [crasher-5]: process has died [exit code 1, Python exception: ValueError: '
+        'the Python crasher gives up')]
+    return cpp_heard, py_heard, died
+
+
+def _others_went_on(out):
+    cpp_heard, py_heard, died = _heard_and_died(out)
+    return bool(died and cpp_heard and py_heard and max(cpp_heard) > died[0]
+                and max(py_heard) > died[0])
+
+
+def test_python_and_cpp_nodes_hear_each_other_and_a_python_crash_is_contained(install):
+    code, out = colcon_wasm(
+        'launch', '--install-base', install, '--duration', 45,
+        '--python', DATA / 'talker.py', '--python', DATA / 'listener.py',
+        '--python', DATA / 'crasher.py', 'demo_nodes/talker', 'demo_nodes/listener',
+        until=_others_went_on)
+    lines = out.splitlines()
+    cpp_heard, py_heard, died = _heard_and_died(out)
     assert cpp_heard, out[-6000:]
     assert py_heard, out[-6000:]
     assert any(re.match(r'\[talker-3\] \[INFO\] \[[\d.]+\] \[py_talker\]: Publishing', line)
@@ -61,9 +81,6 @@ def test_python_and_cpp_nodes_hear_each_other_and_a_python_crash_is_contained(in
     tb = out.index('[crasher-5] Traceback (most recent call last):')
     assert f"[crasher-5]   File \"{DATA / 'crasher.py'}\", line 8, in explode" in out[tb:]
     assert '[crasher-5] ValueError: the Python crasher gives up' in out[tb:]
-    died = [i for i, line in enumerate(lines) if line.startswith(
-        '[ERROR] [crasher-5]: process has died [exit code 1, Python exception: ValueError: '
-        'the Python crasher gives up')]
     assert died, out[-6000:]
     # ... and the others go on
     assert max(cpp_heard) > died[0] and max(py_heard) > died[0], out[-6000:]
@@ -74,7 +91,7 @@ def test_python_services_and_clients_talk_to_cpp_ones(install):
     code, out = colcon_wasm(
         'launch', '--install-base', install, '--duration', 40,
         '--python', DATA / 'add_server.py', '--python', DATA / 'add_client.py',
-        DATA / 'services.launch.xml')
+        DATA / 'services.launch.xml', until=finished('add_client-4'))
     # C++ client -> Python server on /add_two_ints
     assert re.search(r'\[add_server-3\] .*\[py_server\]: Incoming request: a: (\d+) '
                      r'b: \d+', out), out[-6000:]
@@ -134,7 +151,8 @@ def test_time_duration_and_graph_queries(install):
     """rclpy.time / duration as rclpy's, and graph queries that see the C++ nodes."""
     code, out = colcon_wasm('launch', '--install-base', install, '--duration', 60,
                             '--python', DATA / 'time_graph.py', 'demo_nodes/talker',
-                            'demo_nodes/listener', 'demo_nodes/add_two_ints_server')
+                            'demo_nodes/listener', 'demo_nodes/add_two_ints_server',
+                            until=lambda out: re.search(r'\[time_graph-\d\]: process has', out))
     assert '[py_graph]: time, duration and graph queries behave' in out, out[-6000:]
     assert re.search(r'\[INFO\] \[time_graph-\d\]: process has finished cleanly', out), \
         out[-3000:]
@@ -152,7 +170,8 @@ def test_clock_sleeps_and_rates_follow_clock(install):
     """Clock.sleep_for and a node's Rate on use_sim_time count /clock from another node."""
     code, out = colcon_wasm('launch', '--install-base', install, '--duration', 60,
                             '--python', DATA / 'clock_publisher.py',
-                            '--python', DATA / 'sim_sleep.py', timeout=240)
+                            '--python', DATA / 'sim_sleep.py', timeout=240,
+                            until=lambda out: re.search(r'\[sim_sleep-\d\]: process has', out))
     slept = re.search(r'\[sleeper\]: slept on /clock: (\d+) s', out)
     assert slept and int(slept.group(1)) >= 60, out[-6000:]
     assert re.search(r'\[sim_sleep-\d\]: process has finished cleanly', out), out[-6000:]

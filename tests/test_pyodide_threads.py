@@ -11,6 +11,7 @@ the subprocess timeout only bound a run that would not.
 
 import re
 
+from launch_until import finished
 from test_pyodide_nodes import colcon_wasm
 from test_pyodide_nodes import DATA
 from test_pyodide_nodes import install  # noqa: F401 (the fixture)
@@ -25,7 +26,9 @@ def lines_of(out, label):
 def test_a_spin_thread_runs_while_the_main_thread_sleeps_and_waits(install):  # noqa: F811
     code, out = colcon_wasm(
         'launch', '--install-base', install, '--duration', 60,
-        '--python', DATA / 'thread_talker.py', 'demo_nodes/talker', 'demo_nodes/listener')
+        '--python', DATA / 'thread_talker.py', 'demo_nodes/talker', 'demo_nodes/listener',
+        until=lambda out: finished('thread_talker-3')(out) and re.search(
+            r'\[listener-2\] .*I heard: \[Hello from the main thread: \d+\]', out))
     mine = lines_of(out, 'thread_talker-3')
     assert any('spin thread started: alive=True' in line for line in mine), out[-6000:]
     # the C++ talker heard by the spin thread's callback while the main loop sleeps ...
@@ -46,7 +49,8 @@ def test_a_spin_thread_runs_while_the_main_thread_sleeps_and_waits(install):  # 
 def test_spin_threads_of_executors_serve_the_main_threads_calls(install):  # noqa: F811
     code, out = colcon_wasm(
         'launch', '--install-base', install, '--duration', 60,
-        '--python', DATA / 'thread_executor.py', 'demo_nodes/add_two_ints_server')
+        '--python', DATA / 'thread_executor.py', 'demo_nodes/add_two_ints_server',
+        until=finished('thread_executor-2'))
     mine = lines_of(out, 'thread_executor-2')
     text = '\n'.join(mine)
     # a future the spin thread completes while the main thread sleeps; a synchronous call
@@ -68,7 +72,8 @@ def test_spin_threads_of_executors_serve_the_main_threads_calls(install):  # noq
 def test_a_thread_that_does_not_spin_and_a_spin_threads_exception(install):  # noqa: F811
     code, out = colcon_wasm(
         'launch', '--install-base', install, '--duration', 60,
-        '--python', DATA / 'thread_errors.py', 'demo_nodes/talker')
+        '--python', DATA / 'thread_errors.py', 'demo_nodes/talker',
+        until=finished('thread_errors-2'))
     text = '\n'.join(lines_of(out, 'thread_errors-2'))
     assert ("a thread of print: can't start new thread 'Thread-1 (print)' with the target "
             "<built-in function print>: Pyodide starts no threads; colcon-wasm's rclpy runs a "
@@ -89,7 +94,8 @@ def test_a_thread_that_does_not_spin_and_a_spin_threads_exception(install):  # n
 def test_spin_once_runs_one_callback_per_call_in_the_order_of_rclpy(install):  # noqa: F811
     code, out = colcon_wasm(
         'launch', '--install-base', install, '--duration', 60,
-        '--python', DATA / 'spin_once_order.py', DATA / 'fast_talker.launch.xml')
+        '--python', DATA / 'spin_once_order.py', DATA / 'fast_talker.launch.xml',
+        until=finished('spin_once_order-2'))
     text = '\n'.join(lines_of(out, 'spin_once_order-2'))
     # one wait found all four ready: timers, then subscriptions, then guard conditions
     assert "after 1 spin_once: ['timer']" in text, out[-6000:]
@@ -108,7 +114,9 @@ def test_arguments_of_python_scripts_act_as_for_entry_points(install):  # noqa: 
         'launch', '--install-base', install, '--duration', 60, '--python',
         f'{script} --count 3 --ros-args -p greeting:=Greetings -r talk:=chatter '
         '-r __node:=renamed',
-        'demo_nodes/listener')
+        'demo_nodes/listener',
+        until=lambda out: finished('args_talker-2')(out) and all(
+            re.search(rf'\[listener-1\] .*I heard: \[Greetings {i}\]', out) for i in (1, 2, 3)))
     assert '[renamed]: /renamed on /chatter: count=3 greeting=Greetings' in out, out[-6000:]
     for i in (1, 2, 3):
         assert re.search(rf'\[listener-1\] .*I heard: \[Greetings {i}\]', out), out[-6000:]

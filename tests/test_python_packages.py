@@ -18,10 +18,10 @@ import os
 from pathlib import Path
 import re
 import shutil
-import subprocess
 
 from colcon_helpers import colcon
 import demo_build
+from launch_until import run_until
 import pytest
 
 REPO = Path(__file__).resolve().parents[1]
@@ -50,13 +50,15 @@ def overlay(tmp_path_factory):
     return workspace, (workspace / 'log' / 'latest_build' / 'logger_all.log').read_text()
 
 
-def colcon_wasm(workspace, *args, timeout=180):
-    """Run colcon-wasm in the overlay with Pyodide from tests/js; (status, stdout and stderr)."""
+def colcon_wasm(workspace, *args, timeout=180, until=None):
+    """
+    Run colcon-wasm in the overlay with Pyodide from tests/js; (status, stdout and stderr).
+
+    :param until: ``until(output so far)`` true stops it (tests/launch_until.py)
+    """
     env = dict(os.environ, COLCON_WASM_PYODIDE=str(PYODIDE))
-    result = subprocess.run([str(demo_build.venv_tool('colcon-wasm')), *map(str, args)],
-                            cwd=workspace, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                            text=True, env=env, timeout=timeout)
-    return result.returncode, result.stdout
+    return run_until([demo_build.venv_tool('colcon-wasm'), *args], until=until,
+                     timeout=timeout, env=env, cwd=workspace)
 
 
 def test_the_build_packs_the_modules_entry_points_and_data_files(overlay):
@@ -99,17 +101,14 @@ def test_a_plain_python_package_is_packed_and_its_node_heard(overlay):
     shouter, = manifest['executables']
     assert shouter['python'] == {'module': 'py_plain.shouter', 'function': 'main'}
     assert shouter['js'] == 'bin/shouter'
+    heard = r'\[listener-2\] .*I heard: \[SHOUTED FROM A PLAIN PACKAGE: \d+\]'
     code, out = colcon_wasm(workspace, 'launch', '--duration', 25, 'py_plain/shouter',
-                            'demo_nodes/listener')
-    assert re.search(r'\[listener-2\] .*I heard: \[SHOUTED FROM A PLAIN PACKAGE: \d+\]', out), \
-        out[-6000:]
+                            'demo_nodes/listener', until=lambda out: re.search(heard, out))
+    assert re.search(heard, out), out[-6000:]
 
 
-def test_a_packaged_talker_is_heard_by_the_cpp_listener_and_a_crash_is_contained(overlay):
-    workspace, _ = overlay
-    code, out = colcon_wasm(workspace, 'launch', '--duration', 40, 'py_chatter/talker',
-                            'demo_nodes/listener', 'py_chatter/crasher', 'demo_nodes/talker',
-                            'py_chatter/listener')
+def _heard_and_died(out):
+    """Lines (indexes) where each listener heard the other language's talker, the crash."""
     lines = out.splitlines()
     # py_words, another package of the install space, gives the text
     cpp_heard = [i for i, line in enumerate(lines) if re.match(
@@ -117,6 +116,24 @@ def test_a_packaged_talker_is_heard_by_the_cpp_listener_and_a_crash_is_contained
     py_heard = [i for i, line in enumerate(lines) if re.match(
         r'\[listener-5\] .*\[py_package_listener\]: I heard: \[Hello World: (\d+)\] count=\1$',
         line)]
+    died = [i for i, line in enumerate(lines) if line.startswith(
+        '[ERROR] [crasher-3]: process has died [exit code 1, Python exception: RuntimeError: '
+        'the packaged crasher gives up')]
+    return cpp_heard, py_heard, died
+
+
+def _others_went_on(out):
+    cpp_heard, py_heard, died = _heard_and_died(out)
+    return bool(died and cpp_heard and py_heard and max(cpp_heard) > died[0]
+                and max(py_heard) > died[0])
+
+
+def test_a_packaged_talker_is_heard_by_the_cpp_listener_and_a_crash_is_contained(overlay):
+    workspace, _ = overlay
+    code, out = colcon_wasm(workspace, 'launch', '--duration', 40, 'py_chatter/talker',
+                            'demo_nodes/listener', 'py_chatter/crasher', 'demo_nodes/talker',
+                            'py_chatter/listener', until=_others_went_on)
+    cpp_heard, py_heard, died = _heard_and_died(out)
     assert cpp_heard, out[-6000:]
     assert py_heard, out[-6000:]
     tb = out.index('[crasher-3] Traceback (most recent call last):')
@@ -125,9 +142,6 @@ def test_a_packaged_talker_is_heard_by_the_cpp_listener_and_a_crash_is_contained
                      r'site-packages/py_chatter/crasher\.py", line 8, in explode', out[tb:]), \
         out[tb:tb + 3000]
     assert '[crasher-3] RuntimeError: the packaged crasher gives up' in out[tb:]
-    died = [i for i, line in enumerate(lines) if line.startswith(
-        '[ERROR] [crasher-3]: process has died [exit code 1, Python exception: RuntimeError: '
-        'the packaged crasher gives up')]
     assert died, out[-6000:]
     assert max(cpp_heard) > died[0] and max(py_heard) > died[0], out[-6000:]
     assert code == 1, out[-3000:]
@@ -135,16 +149,18 @@ def test_a_packaged_talker_is_heard_by_the_cpp_listener_and_a_crash_is_contained
 
 def test_run_passes_ros_arguments_and_a_launch_file_of_the_package_runs_its_nodes(overlay):
     workspace, _ = overlay
+    published = r'\[renamed_talker\]: Publishing: "Hello from a Python package: 1"'
     code, out = colcon_wasm(workspace, 'run', '--duration', 25, 'py_chatter', 'talker',
-                            '--ros-args', '-r', '__node:=renamed_talker', '-r', 'chatter:=news')
-    assert re.search(r'\[renamed_talker\]: Publishing: "Hello from a Python package: 1"', out), \
-        out[-4000:]
+                            '--ros-args', '-r', '__node:=renamed_talker', '-r', 'chatter:=news',
+                            until=lambda out: re.search(published, out))
+    assert re.search(published, out), out[-4000:]
     assert code == 0, out[-3000:]
+    heard = (r'\[listener-2\] .*\[py_package_listener\]: I heard: \[Hello from a '
+             r'Python package: \d+\]')
     code, out = colcon_wasm(workspace, 'launch', '--duration', 40, 'py_chatter',
-                            'chatter.launch.xml')
+                            'chatter.launch.xml', until=lambda out: re.search(heard, out))
     assert re.search(r'\[talker-1\] .*\[launched_talker\]: Publishing', out), out[-4000:]
-    assert re.search(r'\[listener-2\] .*\[py_package_listener\]: I heard: \[Hello from a '
-                     r'Python package: \d+\]', out), out[-4000:]
+    assert re.search(heard, out), out[-4000:]
     assert code == 0, out[-3000:]
 
 

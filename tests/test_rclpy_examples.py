@@ -18,11 +18,12 @@ import os
 from pathlib import Path
 import re
 import shutil
-import subprocess
 import sys
 
 from humble_build import humble_build
 from humble_build import unpacked_source
+from launch_until import finished
+from launch_until import run_until
 import pytest
 from rclcpp_build import rclcpp_build
 
@@ -55,30 +56,39 @@ def overlay():
                         underlay=underlay, snapshot=False)
 
 
-def launch(build, *items, duration=40):
-    """Run ``colcon-wasm launch`` in the overlay; (status, stdout and stderr)."""
+def launch(build, *items, duration=40, until=None):
+    """
+    Run ``colcon-wasm launch`` in the overlay; (status, stdout and stderr).
+
+    :param duration: its ``--duration``: the launch stops then at the latest
+    :param until: ``until(output so far)`` true ends it sooner (tests/launch_until.py)
+    """
     env = dict(os.environ, COLCON_WASM_PYODIDE=str(PYODIDE))
-    result = subprocess.run(
-        [str(Path(sys.executable).parent / 'colcon-wasm'), 'launch', '--install-base',
-         str(build.install), '--duration', str(duration), *items],
-        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env,
-        timeout=duration + 120)
-    return result.returncode, result.stdout
+    return run_until([Path(sys.executable).parent / 'colcon-wasm', 'launch', '--install-base',
+                      build.install, '--duration', duration, *items],
+                     until=until, timeout=duration + 120, env=env)
 
 
 def test_python_and_cpp_minimal_publishers_and_subscribers_hear_each_other(overlay):
+    # Python -> C++, on 'topic' (std_msgs/msg/String)
+    def cpp_heard(out):
+        return re.findall(r'\[subscriber_member_function-2\] \[INFO\] \[[\d.]+\] '
+                          r"\[minimal_subscriber\]: I heard: 'Hello World: (\d+)'", out)
+
+    # C++ -> Python
+    def py_heard(out):
+        return re.findall(r'\[subscriber_member_function-4\] \[INFO\] \[[\d.]+\] '
+                          r'\[minimal_subscriber\]: I heard: "Hello, world! (\d+)"', out)
+
     code, out = launch(
         overlay,
         'examples_rclpy_minimal_publisher/publisher_member_function',
         'examples_rclcpp_minimal_subscriber/subscriber_member_function',
         'examples_rclcpp_minimal_publisher/publisher_member_function',
-        'examples_rclpy_minimal_subscriber/subscriber_member_function')
-    # Python -> C++, on 'topic' (std_msgs/msg/String)
-    cpp_heard = re.findall(r'\[subscriber_member_function-2\] \[INFO\] \[[\d.]+\] '
-                           r"\[minimal_subscriber\]: I heard: 'Hello World: (\d+)'", out)
-    # C++ -> Python
-    py_heard = re.findall(r'\[subscriber_member_function-4\] \[INFO\] \[[\d.]+\] '
-                          r'\[minimal_subscriber\]: I heard: "Hello, world! (\d+)"', out)
+        'examples_rclpy_minimal_subscriber/subscriber_member_function',
+        until=lambda out: len(cpp_heard(out)) >= 5 and len(py_heard(out)) >= 5)
+    cpp_heard = cpp_heard(out)
+    py_heard = py_heard(out)
     published = re.findall(r'\[publisher_member_function-1\] \[INFO\] \[[\d.]+\] '
                            r'\[minimal_publisher\]: Publishing: "Hello World: (\d+)"', out)
     assert len(cpp_heard) >= 5 and len(py_heard) >= 5, out[-6000:]
@@ -91,7 +101,8 @@ def test_python_and_cpp_minimal_publishers_and_subscribers_hear_each_other(overl
 def test_python_and_cpp_minimal_services_and_clients_call_each_other(overlay):
     # rclcpp client -> rclpy service
     code, out = launch(overlay, 'examples_rclpy_minimal_service/service',
-                       'examples_rclcpp_minimal_client/client_main')
+                       'examples_rclcpp_minimal_client/client_main',
+                       until=finished('client_main-2'))
     assert re.search(r'\[service-1\] \[INFO\] \[[\d.]+\] \[minimal_service\]: Incoming request',
                      out), out[-6000:]
     assert '[service-1] a: 41 b: 1' in out, out[-6000:]
@@ -100,7 +111,8 @@ def test_python_and_cpp_minimal_services_and_clients_call_each_other(overlay):
     assert '[INFO] [client_main-2]: process has finished cleanly' in out
     # rclpy client -> rclcpp service
     code, out = launch(overlay, 'examples_rclcpp_minimal_service/service_main',
-                       'examples_rclpy_minimal_client/client_async')
+                       'examples_rclpy_minimal_client/client_async',
+                       until=finished('client_async-2'))
     assert re.search(r'\[service_main-1\] \[INFO\] \[[\d.]+\] \[minimal_service\]: request: '
                      r'41 \+ 1', out), out[-6000:]
     assert re.search(r'\[client_async-2\] \[INFO\] \[[\d.]+\] \[minimal_client_async\]: Result '
@@ -117,7 +129,8 @@ def test_a_python_action_server_serves_the_cpp_clients_feedback_result_and_cance
     # rclcpp client -> rclpy server (server.py: MultiThreadedExecutor, a reentrant group, an
     # async execute callback that sleeps 1 s between feedbacks), to the end
     code, out = launch(overlay, 'examples_rclpy_minimal_action_server/server',
-                       'examples_rclcpp_minimal_action_client/action_client_member_functions')
+                       'examples_rclcpp_minimal_action_client/action_client_member_functions',
+                       until=finished('action_client_member_functions-2'))
     client = 'action_client_member_functions-2'
     assert log(out, 'server-1', 'minimal_action_server', 'Received goal request'), out[-6000:]
     feedback = log(out, client, 'minimal_action_client',
@@ -132,7 +145,8 @@ def test_a_python_action_server_serves_the_cpp_clients_feedback_result_and_cance
     # an rclcpp client that cancels after 3 s: the sleeping execute callback hears it
     code, out = launch(overlay, 'examples_rclpy_minimal_action_server/server',
                        'examples_rclcpp_minimal_action_client/'
-                       'action_client_not_composable_with_cancel', duration=25)
+                       'action_client_not_composable_with_cancel', duration=25,
+                       until=finished('action_client_not_composable_with_cancel-2'))
     client = 'action_client_not_composable_with_cancel-2'
     assert log(out, 'server-1', 'minimal_action_server', 'Received cancel request'), out[-6000:]
     assert log(out, 'server-1', 'minimal_action_server', 'Goal canceled'), out[-6000:]
@@ -147,7 +161,8 @@ def test_a_python_action_client_drives_the_cpp_server_feedback_result_and_cancel
     # rclpy client (client.py: send_goal_async, feedback, get_result_async) -> rclcpp server
     code, out = launch(overlay, 'examples_rclcpp_minimal_action_server/'
                        'action_server_member_functions',
-                       'examples_rclpy_minimal_action_client/client', duration=35)
+                       'examples_rclpy_minimal_action_client/client', duration=35,
+                       until=finished('client-2'))
     feedback = log(out, 'client-2', 'minimal_action_client',
                    r"Received feedback: array\('i', \[([\d, ]+)\]\)")
     assert feedback[0] == '0, 1, 1' and feedback[-1] == '0, 1, 1, 2, 3, 5, 8, 13, 21, 34, 55', \
@@ -158,7 +173,9 @@ def test_a_python_action_client_drives_the_cpp_server_feedback_result_and_cancel
     # rclpy client_cancel.py cancels after 2 s
     code, out = launch(overlay, 'examples_rclcpp_minimal_action_server/'
                        'action_server_member_functions',
-                       'examples_rclpy_minimal_action_client/client_cancel', duration=25)
+                       'examples_rclpy_minimal_action_client/client_cancel', duration=25,
+                       until=lambda out: finished('client_cancel-2')(out)
+                       and 'Goal Canceled' in out)
     assert log(out, 'action_server_member_functions-1', 'minimal_action_server',
                'Received request to cancel goal'), out[-6000:]
     assert log(out, 'client_cancel-2', 'minimal_action_client',
@@ -174,7 +191,8 @@ def test_the_asyncio_action_client_runs_goals_in_parallel_and_in_sequence(overla
     # rclpy/_event_loop.py)
     code, out = launch(overlay, 'examples_rclcpp_minimal_action_server/'
                        'action_server_member_functions',
-                       'examples_rclpy_minimal_action_client/client_asyncio', duration=100)
+                       'examples_rclpy_minimal_action_client/client_asyncio', duration=100,
+                       until=finished('client_asyncio-2'))
     sequence = r"array\('i', \[0, 1, 1, 2, 3, 5, 8, 13, 21, 34, 55\]\)"
     client = 'client_asyncio-2'
     assert len(log(out, client, 'minimal_action_client_asyncio',
@@ -192,7 +210,9 @@ def test_the_asyncio_action_client_runs_goals_in_parallel_and_in_sequence(overla
 
 def test_python_action_server_and_client_talk_to_each_other(overlay):
     code, out = launch(overlay, 'examples_rclpy_minimal_action_server/server',
-                       'examples_rclpy_minimal_action_client/client_cancel', duration=25)
+                       'examples_rclpy_minimal_action_client/client_cancel', duration=25,
+                       until=lambda out: 'Goal successfully canceled' in out
+                       and 'Goal canceled' in out)
     assert log(out, 'server-1', 'minimal_action_server', 'Goal canceled'), out[-6000:]
     assert log(out, 'client_cancel-2', 'minimal_action_client',
                'Goal successfully canceled'), out[-6000:]
@@ -200,7 +220,7 @@ def test_python_action_server_and_client_talk_to_each_other(overlay):
 
 def test_guard_condition_and_executor_examples(overlay):
     code, out = launch(overlay, 'examples_rclpy_guard_conditions/trigger_guard_condition',
-                       duration=30)
+                       duration=30, until=finished('trigger_guard_condition-1'))
     process = 'trigger_guard_condition-1'
     assert log(out, process, 'demo_guard_condition',
                'timer callback triggered guard condition'), out[-6000:]
@@ -209,16 +229,37 @@ def test_guard_condition_and_executor_examples(overlay):
     assert f'[INFO] [{process}]: process has finished cleanly' in out, out[-6000:]
     # composed (SingleThreadedExecutor: talker and listener) and callback_group
     # (MultiThreadedExecutor: two timers in one mutually exclusive group, and a listener)
+
+    def published(out):
+        return log(out, 'callback_group-2', 'double_talker', r'Publishing: "Hello World: (\d+)"')
+
+    def heard(out, process, n):
+        return log(out, process, 'listener', f'I heard: "Hello World: {n}"')
+
+    def composed_heard_the_other_talker(out):
+        """Tell whether the composed listener heard a number before its talker published it."""
+        for match in re.finditer(r'\[composed-1\] \[INFO\] \[[\d.]+\] \[listener\]: '
+                                 r'I heard: "Hello World: (\d+)"', out):
+            own = re.search(r'\[composed-1\] \[INFO\] \[[\d.]+\] \[talker\]: '
+                            rf'Publishing: "Hello World: {match.group(1)}"', out)
+            if not own or own.start() > match.start():
+                return True
+        return False
+
     code, out = launch(overlay, 'examples_rclpy_executors/composed',
-                       'examples_rclpy_executors/callback_group', duration=25)
-    assert log(out, 'composed-1', 'listener', 'I heard: "Hello World: 2"'), out[-6000:]
-    published = log(out, 'callback_group-2', 'double_talker', r'Publishing: "Hello World: (\d+)"')
+                       'examples_rclpy_executors/callback_group', duration=25,
+                       until=lambda out: len(published(out)) >= 8
+                       and heard(out, 'callback_group-2', 2)
+                       and composed_heard_the_other_talker(out))
+    assert heard(out, 'composed-1', 2), out[-6000:]
+    published = published(out)
     # the two timers (1 s and 0.5 s) share one counter, one callback at a time
-    assert len(published) >= 6 and published == [str(i) for i in range(len(published))], \
+    assert len(published) >= 8 and published == [str(i) for i in range(len(published))], \
         out[-6000:]
-    # each process' listener hears both talkers (same topic)
-    assert log(out, 'composed-1', 'listener', f'I heard: "Hello World: {published[-2]}"')
-    assert log(out, 'callback_group-2', 'listener', 'I heard: "Hello World: 2"'), out[-6000:]
+    # each process' listener hears both talkers (same topic): the double talker counts 3 a
+    # second, the composed one 1
+    assert composed_heard_the_other_talker(out), out[-6000:]
+    assert heard(out, 'callback_group-2', 2), out[-6000:]
 
 
 """Three nodes: the custom executor example, the custom callback group one, and a C++
@@ -239,7 +280,10 @@ def test_custom_executor_and_custom_callback_group_examples(overlay, tmp_path):
     # starts no thread); custom_callback_group: a token-bucket CallbackGroup subclass
     path = tmp_path / 'custom.launch.xml'
     path.write_text(CUSTOM_LAUNCH)
-    code, out = launch(overlay, str(path), duration=30)
+    code, out = launch(overlay, str(path), duration=30, until=lambda out: len(log(
+        out, 'custom_callback_group-2', 'intermittent_talker', 'Publishing')) >= 20
+        and len(log(out, 'custom_executor-1', 'estopper', 'I heard')) >= 3
+        and log(out, 'custom_executor-1', 'listener', 'I heard: "Hello World: 3"'))
     # the high-priority node (estopper) hears the C++ talker
     estop = log(out, 'custom_executor-1', 'estopper', r'I heard: "Hello, world! (\d+)"')
     assert len(estop) >= 3, out[-6000:]

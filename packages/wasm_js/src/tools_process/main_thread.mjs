@@ -132,7 +132,8 @@ export class Tools {
    * Create a publisher.
    * @param {object} spec {topic, type, qos, node?, domain?}
    * @returns {Promise<{id: number, publish: function(Uint8Array): Promise<number>,
-   *   publishMany: function(Uint8Array[]): Promise<number>, close: function(): Promise<void>}>}
+   *   publishMany: function(Uint8Array[]): Promise<number>,
+   *   waitForAllAcked: function(number): Promise<boolean>, close: function(): Promise<void>}>}
    */
   async advertise(spec) {
     const node = await this._node(spec);
@@ -142,6 +143,11 @@ export class Tools {
       publish: (data) => this._call('publish', [id, data]),
       /** Publish several messages in one call (one message to the worker); resolves to the last sequence number. */
       publishMany: (list) => this._call('publishMany', [id, list]),
+      /**
+       * Resolves (true) once every matched reliable subscription took every message, or
+       * (false) after `timeoutMs`; the tools worker waits meanwhile: keep it short.
+       */
+      waitForAllAcked: (timeoutMs) => this._call('waitForAllAcked', [id, timeoutMs]),
       close: () => this._call('destroy', [id]),
     };
   }

@@ -157,6 +157,10 @@ const methods = {
     if (subscriptions.size) drainSoon();
     return seq;
   },
+  /** Wait (blocking this worker, `timeoutMs` at most) until every reliable reader took all. */
+  waitForAllAcked(ep, timeoutMs) {
+    return client.waitForAllAcked(ep, timeoutMs);
+  },
   publishOnce(spec, data) {
     const key = JSON.stringify([spec.node, spec.name, spec.type, spec.qos || {}]);
     let ep = publishers.get(key);

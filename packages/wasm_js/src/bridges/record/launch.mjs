@@ -13,6 +13,11 @@
 
 import { createReadStream, createWriteStream } from 'node:fs';
 
+/** Once the bag has played, how long the subscriptions may take to take its last messages, */
+const SETTLE_MS = 2000;
+/** and how long their callbacks then get before `play` stops the nodes. */
+const CALLBACK_GRACE_MS = 200;
+
 /**
  * Start recording (now) and get ready to play.
  * @param {object} plan the launch plan
@@ -61,6 +66,14 @@ export async function startBags(plan, runtime, { out, err }) {
     play = async () => {
       const n = await player.run();
       log('info', `played ${n} messages`);
+      if (plan.play.stop_after) {
+        // the launch stops the nodes next: they take what was played last, and
+        // their callbacks get a moment to run
+        if (!(await player.settle(SETTLE_MS))) {
+          log('warning', `some subscriptions had not taken every message played ${SETTLE_MS / 1000} s after the last`);
+        }
+        await new Promise((resolve) => setTimeout(resolve, CALLBACK_GRACE_MS));
+      }
       return n;
     };
   }

@@ -166,6 +166,23 @@ export class Player {
     return this.published;
   }
 
+  /**
+   * Wait until the subscriptions took what was played (`timeoutMs` at most
+   * in all): before the launch stops them, once the bag has played.
+   * @returns {Promise<boolean>} false when some had not taken it all in time
+   */
+  async settle(timeoutMs) {
+    const until = performance.now() + timeoutMs;
+    let all = true;
+    for (const c of this.channels.values()) {
+      const publisher = await c.publisher.catch(() => null);
+      if (!publisher) continue;
+      const left = Math.max(0, until - performance.now());
+      if (!(await publisher.waitForAllAcked(left).catch(() => false))) all = false;
+    }
+    return all;
+  }
+
   /** Stop playing (what is in flight is still published). */
   close() {
     this.stopped = true;
