@@ -16,7 +16,12 @@ INSTALL_WASM: a ``colcon build --wasm`` of demo/src. Two measures:
   640x480 rgb8 for S seconds, CPU time (user + system of the command and
   its children) with and without ``--record``, in ``--pairs`` interleaved
   pairs (the machine's speed drifts: each pair is compared on its own,
-  the median pair is reported with the range), and messages lost.
+  the median of the pairs is reported with the range), and messages lost.
+
+The commands' output goes to files, read once they ended (a live pipe
+would have this script compete with them for the CPU), and every file it
+wrote is removed at the end (``--keep`` keeps them: 1.7 GB per minute
+recorded).
 
 Prints a Markdown table.
 """
@@ -25,6 +30,8 @@ import argparse
 from pathlib import Path
 import re
 import resource
+import shutil
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -36,14 +43,17 @@ CHATTER = 'demo_interfaces/msg/Chatter'
 def colcon_wasm(*args):
     """Run colcon-wasm; return (exit status, stdout, stderr, CPU seconds, wall seconds)."""
     tool = Path(sys.executable).parent / 'colcon-wasm'
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    started = time.monotonic()
-    r = subprocess.run([str(tool), *map(str, args)], capture_output=True, text=True,
-                       timeout=900)
-    wall = time.monotonic() - started
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-    return r.returncode, r.stdout, r.stderr, cpu, wall
+    with tempfile.TemporaryFile('w+') as out, tempfile.TemporaryFile('w+') as err:
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
+        started = time.monotonic()
+        code = subprocess.run([str(tool), *map(str, args)], stdout=out, stderr=err,
+                              timeout=900).returncode
+        wall = time.monotonic() - started
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+        out.seek(0)
+        err.seek(0)
+        return code, out.read(), err.read(), cpu, wall
 
 
 def small_bag(path, install, count, period_ns):
@@ -86,8 +96,20 @@ def main():
     parser.add_argument('--seconds', type=float, default=20)
     parser.add_argument('--messages', type=int, default=20000)
     parser.add_argument('--pairs', type=int, default=3)
+    parser.add_argument('--keep', action='store_true', help='keep the bags written')
     args = parser.parse_args()
     work = Path(tempfile.mkdtemp(prefix='bench-record-'))
+    try:
+        measure(args, work)
+    finally:
+        if args.keep:
+            print(f'the bags are in {work}')
+        else:
+            shutil.rmtree(work, ignore_errors=True)
+
+
+def measure(args, work):
+    """Measure, print the table."""
     rows = []
 
     bag = work / 'small'
@@ -136,9 +158,13 @@ def main():
         lost = int(said.group(1)) if said else 0
         overhead = (rec_cpu - base_cpu) / args.seconds * 100
         pairs.append((overhead, base_cpu, rec_cpu, len(chatter), published, len(frames), lost))
-    pairs.sort()
-    overhead, base_cpu, rec_cpu, chatter, published, frames, lost = pairs[len(pairs) // 2]
-    spread = ', '.join(f'{p[0]:+.1f}' for p in pairs)
+        if not args.keep:
+            recorded.unlink()
+    overhead = statistics.median(p[0] for p in pairs)
+    # the other figures of the pair nearest the median
+    _, base_cpu, rec_cpu, chatter, published, frames, lost = min(
+        pairs, key=lambda p: abs(p[0] - overhead))
+    spread = ', '.join(f'{p[0]:+.1f}' for p in sorted(pairs))
     losses = ', '.join(str(p[6]) for p in pairs)
     rows.append((f'record 1 kHz talker + 30 Hz 640x480 rgb8 for {args.seconds:.0f} s '
                  f'(median of {len(pairs)} interleaved pairs)',

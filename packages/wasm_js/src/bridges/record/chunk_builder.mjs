@@ -26,9 +26,22 @@ const OP_MESSAGE_INDEX = 0x07;
 /** opcode, record length, channel id, sequence, log time, publish time */
 const MESSAGE_HEAD = 1 + 8 + 2 + 4 + 8 + 8;
 
-/** Nanoseconds since the epoch (BigInt) of a bus time in milliseconds since the epoch. */
+/**
+ * Nanoseconds since the epoch of a bus time in milliseconds since the
+ * epoch: a whole number in a double (a BigInt per message would feed the
+ * garbage collector; the double holds what the bus time holds).
+ */
 function nanoseconds(ms) {
-  return BigInt(Math.round(ms * 1e6));
+  return Math.round(ms * 1e6);
+}
+
+const TWO_32 = 4294967296;
+
+/** Write `x`, a whole number below 2^64 in a double, as a little-endian uint64. */
+function setUint64(view, at, x) {
+  const high = Math.floor(x / TWO_32);
+  view.setUint32(at, x - high * TWO_32, true); // exact: both halves fit in the double
+  view.setUint32(at + 4, high, true);
 }
 
 /**
@@ -99,17 +112,17 @@ export class ChunkBuilder {
         const logTime = nanoseconds(info.receivedTime);
         const v = this.view;
         v.setUint8(at, OP_MESSAGE);
-        v.setBigUint64(at + 1, BigInt(MESSAGE_HEAD - 9 + len), true);
+        setUint64(v, at + 1, MESSAGE_HEAD - 9 + len);
         v.setUint16(at + 9, channel, true);
         v.setUint32(at + 11, 0, true);
-        v.setBigUint64(at + 15, logTime, true);
-        v.setBigUint64(at + 23, nanoseconds(info.sourceTime), true);
+        setUint64(v, at + 15, logTime);
+        setUint64(v, at + 23, nanoseconds(info.sourceTime));
         this.used = at + MESSAGE_HEAD + len;
         let index = this.index.get(channel);
         if (!index) this.index.set(channel, index = []);
-        index.push(logTime, BigInt(at));
-        if (this.start === null || logTime < this.start) this.start = logTime;
-        if (this.end === null || logTime > this.end) this.end = logTime;
+        index.push(logTime, at);
+        if (logTime < this.start) this.start = logTime;
+        if (logTime > this.end) this.end = logTime;
         if (this.count++ === 0) this.deadline = this.now() + this.flushMs;
         copied++;
       }
@@ -136,12 +149,12 @@ export class ChunkBuilder {
     for (const [channel, entries] of this.index) {
       const bytes = entries.length * 8;
       iv.setUint8(at, OP_MESSAGE_INDEX);
-      iv.setBigUint64(at + 1, BigInt(2 + 4 + bytes), true);
+      setUint64(iv, at + 1, 2 + 4 + bytes);
       iv.setUint16(at + 9, channel, true);
       iv.setUint32(at + 11, bytes, true);
       let p = at + 15;
       for (const value of entries) {
-        iv.setBigUint64(p, value, true);
+        setUint64(iv, p, value);
         p += 8;
       }
       channels.push([channel, entries.length / 2, 15 + bytes]);
@@ -149,7 +162,7 @@ export class ChunkBuilder {
     }
     this.sink({
       records: this.buffer.subarray(0, this.used), slot: this.slot, indexes, channels,
-      start: this.start, end: this.end, messages: this.count,
+      start: BigInt(this.start), end: BigInt(this.end), messages: this.count,
     });
     this._open(this.chunkBytes);
   }
@@ -161,10 +174,11 @@ export class ChunkBuilder {
     this.view = new DataView(this.buffer.buffer, this.buffer.byteOffset, this.buffer.byteLength);
     this.used = 0;
     this.count = 0;
-    this.start = null;
-    this.end = null;
+    /** earliest and latest log time of the chunk (ns, whole numbers in doubles) */
+    this.start = Infinity;
+    this.end = -Infinity;
     this.deadline = Infinity;
-    /** channel id -> [log time, offset, log time, offset, ...] (BigInt) */
+    /** channel id -> [log time (ns), offset, log time, offset, ...] */
     this.index = new Map();
   }
 }
