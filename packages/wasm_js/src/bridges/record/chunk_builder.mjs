@@ -20,6 +20,7 @@
  */
 
 import { TakeMode } from '../../bus_client.mjs';
+import { setUint64 } from '../common/little_endian.mjs';
 
 const OP_MESSAGE = 0x05;
 const OP_MESSAGE_INDEX = 0x07;
@@ -33,15 +34,6 @@ const MESSAGE_HEAD = 1 + 8 + 2 + 4 + 8 + 8;
  */
 function nanoseconds(ms) {
   return Math.round(ms * 1e6);
-}
-
-const TWO_32 = 4294967296;
-
-/** Write `x`, a whole number below 2^64 in a double, as a little-endian uint64. */
-function setUint64(view, at, x) {
-  const high = Math.floor(x / TWO_32);
-  view.setUint32(at, x - high * TWO_32, true); // exact: both halves fit in the double
-  view.setUint32(at + 4, high, true);
 }
 
 /**

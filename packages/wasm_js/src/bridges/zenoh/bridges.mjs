@@ -18,6 +18,7 @@
  * @module bridges/zenoh/bridges
  */
 
+import { setUint64 } from '../common/little_endian.mjs';
 import { TakeMode } from './gateway_bus.mjs';
 import { dataKey, decodeAttachment, encodeAttachment, nowNs } from './keys.mjs';
 import { randomZid } from './session.mjs';
@@ -165,12 +166,9 @@ export class TopicOut {
   _attachment(heap, at, info) {
     if (!this._view || this._view.buffer !== heap.buffer) this._view = new DataView(heap.buffer);
     const v = this._view;
-    const ns = Math.round(info.sourceTime * 1e6);
-    const hi = Math.floor(ns / 4294967296);
     v.setUint32(at, info.pubSeqLo >>> 0, true);
     v.setUint32(at + 4, info.pubSeqHi >>> 0, true);
-    v.setUint32(at + 8, ns - hi * 4294967296, true);
-    v.setUint32(at + 12, hi, true);
+    setUint64(v, at + 8, Math.round(info.sourceTime * 1e6));
     heap[at + 16] = 16;
     const g = info.gid;
     for (let i = 0; i < 4; i++) v.setInt32(at + 17 + 4 * i, g[i], true);
