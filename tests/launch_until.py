@@ -13,10 +13,11 @@ on the whole output hold as before::
     code, out = run_until(command, until=finished('client-2'))
 
 ``--duration`` still bounds a run whose awaited line never comes, and the
-process group is killed ``grace`` seconds past the subprocess timeout.
+process group is killed once ``timeout`` seconds have passed.
 """
 
 import os
+import re
 import signal
 import subprocess
 import threading
@@ -55,6 +56,25 @@ def run_until(command, *, until=None, timeout=180, env=None, cwd=None):
 def finished(label):
     """Return an ``until``: the launch's process ``label`` (``name-N``) ended, cleanly or not."""
     return lambda out: f'[{label}]: process has' in out
+
+
+def line_indexes(out, pattern):
+    """Return the indexes of the lines of ``out`` that ``pattern`` matches (from their start)."""
+    regex = re.compile(pattern)
+    return [i for i, line in enumerate(out.splitlines()) if regex.match(line)]
+
+
+def went_on_after(crash, *heard):
+    """
+    Return an ``until``: a line matched ``crash``, and each of ``heard`` matched a line after it.
+
+    For a launch where one process crashes on purpose and the others must go on.
+    """
+    def until(out):
+        died = line_indexes(out, crash)
+        return bool(died) and all(any(i > died[0] for i in line_indexes(out, pattern))
+                                  for pattern in heard)
+    return until
 
 
 def _signal(process, number):

@@ -16,7 +16,9 @@ import shutil
 
 import demo_build
 from launch_until import finished
+from launch_until import line_indexes
 from launch_until import run_until
+from launch_until import went_on_after
 import pytest
 
 REPO = Path(__file__).resolve().parents[1]
@@ -44,25 +46,11 @@ def colcon_wasm(*args, timeout=180, until=None):
                      timeout=timeout, env=env)
 
 
-def _heard_and_died(out):
-    """Lines (indexes) where each listener heard the other language's talker, the crash."""
-    lines = out.splitlines()
-    # Python talker -> C++ listener, C++ talker -> Python listener (byte-exact CDR both ways)
-    cpp_heard = [i for i, line in enumerate(lines)
-                 if re.match(r'\[listener-2\] .*I heard: \[Hello from Python: \d+\]', line)]
-    py_heard = [i for i, line in enumerate(lines)
-                if re.match(r'\[listener-4\] .*\[py_listener\]: I heard: \[Hello World: (\d+)\] '
-                            r'count=\1$', line)]
-    died = [i for i, line in enumerate(lines) if line.startswith(
-        '[ERROR] [crasher-5]: process has died [exit code 1, Python exception: ValueError: '
-        'the Python crasher gives up')]
-    return cpp_heard, py_heard, died
-
-
-def _others_went_on(out):
-    cpp_heard, py_heard, died = _heard_and_died(out)
-    return bool(died and cpp_heard and py_heard and max(cpp_heard) > died[0]
-                and max(py_heard) > died[0])
+# Python talker -> C++ listener, C++ talker -> Python listener (byte-exact CDR both ways)
+CPP_HEARD = r'\[listener-2\] .*I heard: \[Hello from Python: \d+\]'
+PY_HEARD = r'\[listener-4\] .*\[py_listener\]: I heard: \[Hello World: (\d+)\] count=\1$'
+CRASHED = re.escape('[ERROR] [crasher-5]: process has died [exit code 1, Python exception: '
+                    'ValueError: the Python crasher gives up')
 
 
 def test_python_and_cpp_nodes_hear_each_other_and_a_python_crash_is_contained(install):
@@ -70,9 +58,11 @@ def test_python_and_cpp_nodes_hear_each_other_and_a_python_crash_is_contained(in
         'launch', '--install-base', install, '--duration', 45,
         '--python', DATA / 'talker.py', '--python', DATA / 'listener.py',
         '--python', DATA / 'crasher.py', 'demo_nodes/talker', 'demo_nodes/listener',
-        until=_others_went_on)
+        until=went_on_after(CRASHED, CPP_HEARD, PY_HEARD))
     lines = out.splitlines()
-    cpp_heard, py_heard, died = _heard_and_died(out)
+    cpp_heard = line_indexes(out, CPP_HEARD)
+    py_heard = line_indexes(out, PY_HEARD)
+    died = line_indexes(out, CRASHED)
     assert cpp_heard, out[-6000:]
     assert py_heard, out[-6000:]
     assert any(re.match(r'\[talker-3\] \[INFO\] \[[\d.]+\] \[py_talker\]: Publishing', line)

@@ -21,7 +21,9 @@ import shutil
 
 from colcon_helpers import colcon
 import demo_build
+from launch_until import line_indexes
 from launch_until import run_until
+from launch_until import went_on_after
 import pytest
 
 REPO = Path(__file__).resolve().parents[1]
@@ -107,33 +109,23 @@ def test_a_plain_python_package_is_packed_and_its_node_heard(overlay):
     assert re.search(heard, out), out[-6000:]
 
 
-def _heard_and_died(out):
-    """Lines (indexes) where each listener heard the other language's talker, the crash."""
-    lines = out.splitlines()
-    # py_words, another package of the install space, gives the text
-    cpp_heard = [i for i, line in enumerate(lines) if re.match(
-        r'\[listener-2\] .*I heard: \[Hello from a Python package: \d+\]', line)]
-    py_heard = [i for i, line in enumerate(lines) if re.match(
-        r'\[listener-5\] .*\[py_package_listener\]: I heard: \[Hello World: (\d+)\] count=\1$',
-        line)]
-    died = [i for i, line in enumerate(lines) if line.startswith(
-        '[ERROR] [crasher-3]: process has died [exit code 1, Python exception: RuntimeError: '
-        'the packaged crasher gives up')]
-    return cpp_heard, py_heard, died
-
-
-def _others_went_on(out):
-    cpp_heard, py_heard, died = _heard_and_died(out)
-    return bool(died and cpp_heard and py_heard and max(cpp_heard) > died[0]
-                and max(py_heard) > died[0])
+# py_words, another package of the install space, gives the text
+CPP_HEARD = r'\[listener-2\] .*I heard: \[Hello from a Python package: \d+\]'
+PY_HEARD = (r'\[listener-5\] .*\[py_package_listener\]: I heard: \[Hello World: (\d+)\] '
+            r'count=\1$')
+CRASHED = re.escape('[ERROR] [crasher-3]: process has died [exit code 1, Python exception: '
+                    'RuntimeError: the packaged crasher gives up')
 
 
 def test_a_packaged_talker_is_heard_by_the_cpp_listener_and_a_crash_is_contained(overlay):
     workspace, _ = overlay
     code, out = colcon_wasm(workspace, 'launch', '--duration', 40, 'py_chatter/talker',
                             'demo_nodes/listener', 'py_chatter/crasher', 'demo_nodes/talker',
-                            'py_chatter/listener', until=_others_went_on)
-    cpp_heard, py_heard, died = _heard_and_died(out)
+                            'py_chatter/listener',
+                            until=went_on_after(CRASHED, CPP_HEARD, PY_HEARD))
+    cpp_heard = line_indexes(out, CPP_HEARD)
+    py_heard = line_indexes(out, PY_HEARD)
+    died = line_indexes(out, CRASHED)
     assert cpp_heard, out[-6000:]
     assert py_heard, out[-6000:]
     tb = out.index('[crasher-3] Traceback (most recent call last):')
