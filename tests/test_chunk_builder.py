@@ -12,7 +12,7 @@ Schema and Channel records the launcher hands it, and the launcher indexes
 what it reports and writes the summary; compressed, the chunks go through
 the pipe's frame format to the launcher, which wraps them in their Chunk
 records (colcon_wasm/record/mcap_file.py). Here a real bus in Node.js
-carries small messages and 900 KiB frames on two topics into that builder,
+carries small messages and ~900 KiB frames on two topics into that builder,
 both ways, and Foxglove's `mcap` (with CRC checks) and `rosbags` read the
 file: every message, in order, with its bytes, on its channel, with the
 chunk and message indexes. No build is needed (the end-to-end path is
@@ -37,6 +37,13 @@ import rosbags.highlevel as rosbags_highlevel
 HERE = Path(__file__).resolve().parent
 SRC = HERE.parent / 'packages' / 'wasm_js' / 'src'
 TYPE = 'test_msgs/msg/Bytes'
+
+
+def _frame(round_):
+    """The check's frame number `round_` (tests/js/chunk_builder_check.mjs)."""
+    pattern = bytes((7 * j + 13 * round_) & 255 for j in range(256))
+    size = 900 * 1024 + round_
+    return (pattern * (size // 256 + 1))[:size]
 
 
 class _Schemas:
@@ -111,6 +118,8 @@ def test_worker_chunks_make_a_bag_that_mcap_and_rosbags_read(tmp_path, compressi
         writes = [[r['kind'] for r in written] for written in report['reports']]
         assert [kind for w in writes for kind in w] == ['records'] + ['chunk'] * len(chunks)
         assert ['chunk', 'chunk'] in writes, writes
+        # chunks built in pool slots (staged, moved in place) and in buffers of their own
+        assert 0 < report['inSlots'] < len(chunks), report['inSlots']
     else:
         report, chunks = _worker_chunks(tmp_path)
         writer = _record(bag, chunks, [(1, '/small'), (2, '/frames')], compression)
@@ -134,6 +143,9 @@ def test_worker_chunks_make_a_bag_that_mcap_and_rosbags_read(tmp_path, compressi
         # the message indexes are used here (log_time_order): they must point at the records
         for _, channel, message in reader.iter_messages(log_time_order=True):
             got[channel.id].append((len(message.data), message.data[0]))
+            if channel.id == 2:
+                # every byte of a frame, wherever its record lies in the chunk
+                assert message.data == _frame(len(message.data) - 900 * 1024)
             times[channel.id].append(message.log_time)
             assert message.publish_time == message.log_time
     for channel in (1, 2):
@@ -168,8 +180,7 @@ def test_worker_chunks_make_a_bag_that_mcap_and_rosbags_read(tmp_path, compressi
         counts = {c.topic: c.msgcount for c in reader.connections}
         assert counts == {'/small': len(published) - 6, '/frames': 6}
         frames_read = [raw for c, _, raw in reader.messages() if c.topic == '/frames']
-        assert [len(f) for f in frames_read] == [900 * 1024] * 6
-        assert [f[0] for f in frames_read] == list(range(6))
+        assert [bytes(f) for f in frames_read] == [_frame(r) for r in range(6)]
 
 
 def test_a_channel_the_bag_has_no_topic_for_is_left_out(tmp_path):

@@ -9,14 +9,19 @@
  *   node chunk_builder_check.mjs WASM_JS_SRC_DIR file FD OFFSET RECORDS_FILE
  *
  * A publisher process sends, on two topics, small messages and frames of
- * 900 KiB; a recorder process records both into chunks of 1 MiB. `pipe`:
- * every closed chunk is written to OUT_FILE as the recorder's pipe frames
- * carry it (bridges/record/frames.mjs). `file`: the bag's descriptor FD
- * (inherited, the launcher's BagWriter wrote its header up to OFFSET) gets
- * the launcher's Schema/Channel records (RECORDS_FILE) and then every chunk
- * through bridges/record/file_sink.mjs, as the host writes it.
+ * about 900 KiB (byte j of frame r is (7 j + 13 r) mod 256, its length
+ * 900 KiB + r); a recorder process records both into chunks of 1 MiB.
+ * `pipe`: every closed chunk, in a buffer of its own, is written to OUT_FILE
+ * as the recorder's pipe frames carry it (bridges/record/frames.mjs).
+ * `file`: chunks are built in the slots of a 4-slot pool as in the
+ * recording worker (the later ones, with every slot waiting for the disk,
+ * in buffers of their own); the bag's descriptor FD (inherited, the
+ * launcher's BagWriter wrote its header up to OFFSET) gets the launcher's
+ * Schema/Channel records (RECORDS_FILE) and then every chunk through
+ * bridges/record/file_sink.mjs, as the host writes it.
  * A JSON line on stdout lists what was published (topic channel, length,
- * first byte), the messages per chunk and, in file mode, the write reports.
+ * first byte), the messages per chunk, in file mode the write reports and
+ * how many chunks were built in pool slots.
  */
 
 import { readFileSync, writeFileSync } from 'node:fs';
@@ -30,6 +35,7 @@ const { Bus, KIND_PUBLISHER, KIND_SUBSCRIPTION } = await import(src('bus.mjs'));
 const { BusClient } = await import(src('bus_client.mjs'));
 const { PROC_KIND_NODE, PROC_KIND_RUNTIME } = await import(src('layout.mjs'));
 const { ChunkBuilder } = await import(src('bridges/record/chunk_builder.mjs'));
+const { ChunkPool } = await import(src('bridges/record/chunk_pool.mjs'));
 const { FileSink } = await import(src('bridges/record/file_sink.mjs'));
 const { chunkHead } = await import(src('bridges/record/frames.mjs'));
 
@@ -48,7 +54,10 @@ const frames = [];
 const chunks = [];
 const reports = [];
 let sink = null;
+let pool = null;
+let inSlots = 0;
 if (mode === 'file') {
+  pool = ChunkPool.create(4, 1 << 20);
   const [fd, offset, recordsFile] = rest;
   sink = new FileSink({
     fd: Number(fd), offset: Number(offset), maxQueuedBytes: 1 << 30,
@@ -64,13 +73,14 @@ const writeBatch = () => {
   batch = [];
 };
 const recording = new ChunkBuilder(recorder, {
-  chunkBytes: 1 << 20, flushMs: 60000,
+  chunkBytes: 1 << 20, flushMs: 60000, pool,
   sink: (chunk) => {
     chunks.push(chunk.messages);
     if (sink) {
-      // as the recording worker posts it (a copy: the builder reuses its buffer at once)
-      const records = chunk.records.slice();
-      batch.push({ ...chunk, records, crc: zlib.crc32(records), release: () => {} });
+      // as the recording worker posts it: the slot is freed once written
+      if (chunk.slot >= 0) inSlots++;
+      const release = () => { if (chunk.slot >= 0) pool.release(chunk.slot); };
+      batch.push({ ...chunk, crc: zlib.crc32(chunk.records), release });
       if (batch.length === 2) writeBatch();
       return true;
     }
@@ -94,11 +104,10 @@ for (let round = 0; round < 6; round++) {
     publisher.publish(small, data);
     published.push([1, n, data[0]]);
   }
-  const frame = new Uint8Array(900 * 1024);
-  for (let j = 0; j < frame.length; j += 997) frame[j] = (j + round) & 255;
-  frame[0] = round;
+  const frame = new Uint8Array(900 * 1024 + round);
+  for (let j = 0; j < frame.length; j++) frame[j] = (7 * j + 13 * round) & 255;
   publisher.publish(big, frame);
-  published.push([2, frame.length, round]);
+  published.push([2, frame.length, frame[0]]);
   // the recorder wakes up now and then, as the tools worker does
   if (round % 2 === 1) recording.drain();
 }
@@ -119,4 +128,4 @@ if (mode === 'pipe') {
   }
   writeFileSync(rest[0], out);
 }
-console.log(JSON.stringify({ published, chunks, reports }));
+console.log(JSON.stringify({ published, chunks, reports, inSlots }));

@@ -14,6 +14,16 @@
  * memories and exports the two copies. Elsewhere (Node.js 20) the bus stays
  * a SharedArrayBuffer and the copies stay TypedArray.set().
  *
+ * The relaxed-atomic copy goes word by word only when the source and the
+ * destination sit at the same offset modulo 8; otherwise it goes byte by
+ * byte (3.6 GB/s against 28 GB/s on the bench machine, Node.js 20). A copy
+ * to a place whose alignment is not the source's (an MCAP Message record's
+ * data sits 31 bytes into it) can be made in two fast steps when the
+ * destination is a shared WebAssembly.Memory: TypedArray.set() to an
+ * aligned staging area in it, then `memoryMover`'s memory.copy within that
+ * one memory (no multi-memory needed: every engine with bulk memory, Node.js
+ * 20 included).
+ *
  * @module copier
  */
 
@@ -62,6 +72,22 @@ function moduleBytes(heapShared) {
   ]);
 }
 
+/**
+ * The bytes of a module importing one shared memory "m"."memory" and
+ * exporting move(dst, src, len), a memory.copy within it.
+ */
+function moverBytes() {
+  const body = [0, 0x20, 0, 0x20, 1, 0x20, 2, 0xfc, 0x0a, 0, 0, 0x0b];
+  return new Uint8Array([
+    0x00, 0x61, 0x73, 0x6d, 0x01, 0x00, 0x00, 0x00,
+    ...section(1, [1, 0x60, 3, 0x7f, 0x7f, 0x7f, 0]),
+    ...section(2, [1, ...name('m'), ...name('memory'), 0x02, 0x03, 0, ...leb(65536)]),
+    ...section(3, [1, 0]),
+    ...section(7, [1, ...name('move'), 0x00, 0]),
+    ...section(10, [1, ...leb(body.length), ...body]),
+  ]);
+}
+
 const compiled = new Map();
 
 function compile(heapShared) {
@@ -103,5 +129,24 @@ export function heapCopier(heap, bus) {
     return { toBus: e.toBus, fromBus: e.fromBus };
   } catch (err) {
     return null; // e.g. a heap whose limits the import does not accept
+  }
+}
+
+let mover = null;
+
+/**
+ * memory.copy within one shared memory, at any alignment (see the module's
+ * text), or null when this engine or this memory does not allow it.
+ * @param {WebAssembly.Memory} memory a shared memory
+ * @returns {?function(number, number, number): void} move(dstOffset, srcOffset, len);
+ *   it throws a RuntimeError when a range lies outside the memory
+ */
+export function memoryMover(memory) {
+  if (typeof WebAssembly !== 'object' || !(memory instanceof WebAssembly.Memory)) return null;
+  try {
+    if (mover === null) mover = new WebAssembly.Module(moverBytes());
+    return new WebAssembly.Instance(mover, { m: { memory } }).exports.move;
+  } catch (err) {
+    return null; // no bulk memory, or a memory the import does not accept
   }
 }

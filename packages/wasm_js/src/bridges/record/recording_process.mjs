@@ -46,7 +46,7 @@ export class RecordingProcess {
       name: 'wasm_js recorder',
       workerData: {
         handle: runtime.bus.handle, pid, control: port2, requests, crc, chunkBytes, flushMs,
-        pool: { sab: pool.sab, slots: pool.slots, slotBytes: pool.slotBytes },
+        pool: { memory: pool.memory, slots: pool.slots, slotBytes: pool.slotBytes },
         coalesceMs: COALESCE_MS, batchChunks: BATCH_CHUNKS, batchMs: BATCH_MS,
       },
       transferList: [port2],

@@ -54,7 +54,7 @@ const post = (m, transfer) => parentPort.postMessage(m, transfer || []);
 /** Node.js 20.15 and later: the C CRC-32 of zlib; else the chunks go without one (CRC 0, allowed). */
 const crc32 = crc && typeof zlib.crc32 === 'function' ? zlib.crc32 : null;
 const builder = new ChunkBuilder(client, {
-  chunkBytes, flushMs, sink: postChunk, pool: new ChunkPool(pool.sab, pool.slots, pool.slotBytes),
+  chunkBytes, flushMs, sink: postChunk, pool: new ChunkPool(pool.memory, pool.slots, pool.slotBytes),
 });
 /** subscription endpoints of the recording */
 const endpoints = new Set();
