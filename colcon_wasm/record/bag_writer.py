@@ -38,6 +38,7 @@ from colcon_wasm.record import BagError
 from colcon_wasm.record.mcap_file import ChunkBuffer
 from colcon_wasm.record.mcap_file import drop_channels
 from colcon_wasm.record.mcap_file import McapFile
+from colcon_wasm.record.page_cache import WrittenPages
 from colcon_wasm.record.qos import to_rosbag2
 from mcap.data_stream import RecordBuilder
 from mcap.records import DataEnd
@@ -61,6 +62,8 @@ class _FileSink:
         self.good = 0
         # while the host writes the file: what is written here is kept for it
         self.captured = None
+        # what is written is let go of from the page cache behind the writer
+        self.pages = WrittenPages(self.fd)
 
     def hand_over(self):
         """Let the host write the file from here on (``write`` keeps the bytes for it)."""
@@ -98,6 +101,7 @@ class _FileSink:
                 total += n
                 view = view[n:]
         self.good = self.position
+        self.pages.wrote_up_to(self.position)
         return total
 
     def tell(self):
@@ -198,6 +202,7 @@ class BagWriter:
         for channel, count, _ in channels:
             self._count(channel, count, start, end)
         self._host_good = report['offset'] + report['chunkLength'] + report['indexLength']
+        self._sink.pages.wrote_up_to(self._host_good)
 
     def host_failed(self, report):
         """
