@@ -63,6 +63,7 @@ export class ChunkPool {
      */
     this.move = memoryMover(memory);
   }
+
   /** Take a free slot: its number, or -1 when every slot is taken. */
   acquire() {
     for (let i = 0; i < this.slots; i++) {
