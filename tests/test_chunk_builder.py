@@ -40,7 +40,7 @@ TYPE = 'test_msgs/msg/Bytes'
 
 
 def _frame(round_):
-    """The check's frame number `round_` (tests/js/chunk_builder_check.mjs)."""
+    """Return the check's frame number `round_` (tests/js/chunk_builder_check.mjs)."""
     pattern = bytes((7 * j + 13 * round_) & 255 for j in range(256))
     size = 900 * 1024 + round_
     return (pattern * (size // 256 + 1))[:size]
