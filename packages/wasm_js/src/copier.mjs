@@ -46,6 +46,18 @@ function section(id, body) {
   return [id, ...leb(body.length), ...body];
 }
 
+/** The import of a memory "m".`field` with these limits. */
+function memoryImport(field, limits) {
+  return [...name('m'), ...name(field), 0x02, ...limits];
+}
+
+/** A function body (with its size) of (dst, src, len): memory.copy from memory `src` to `dst`. */
+function copyBody(dst, src) {
+  // local.get 0..2; memory.copy dst src; end
+  const body = [0, 0x20, 0, 0x20, 1, 0x20, 2, 0xfc, 0x0a, dst, src, 0x0b];
+  return [...leb(body.length), ...body];
+}
+
 /**
  * The bytes of a module importing memory 0 "m"."heap" and memory 1
  * "m"."bus" (shared, any size up to 4 GiB; the heap unshared when
@@ -56,19 +68,13 @@ function moduleBytes(heapShared) {
   // limits: 0x03 = shared with a maximum, 0x00 = a minimum only.
   const heapLimits = heapShared ? [0x03, 0, ...leb(65536)] : [0x00, 0];
   const busLimits = [0x03, 0, ...leb(65536)];
-  const memory = (field, limits) => [...name('m'), ...name(field), 0x02, ...limits];
-  const copy = (dst, src) => {
-    // local.get 0..2; memory.copy dst src; end
-    const body = [0, 0x20, 0, 0x20, 1, 0x20, 2, 0xfc, 0x0a, dst, src, 0x0b];
-    return [...leb(body.length), ...body];
-  };
   return new Uint8Array([
     0x00, 0x61, 0x73, 0x6d, 0x01, 0x00, 0x00, 0x00,
     ...section(1, [1, 0x60, 3, 0x7f, 0x7f, 0x7f, 0]),
-    ...section(2, [2, ...memory('heap', heapLimits), ...memory('bus', busLimits)]),
+    ...section(2, [2, ...memoryImport('heap', heapLimits), ...memoryImport('bus', busLimits)]),
     ...section(3, [2, 0, 0]),
     ...section(7, [2, ...name('toBus'), 0x00, 0, ...name('fromBus'), 0x00, 1]),
-    ...section(10, [2, ...copy(1, 0), ...copy(0, 1)]),
+    ...section(10, [2, ...copyBody(1, 0), ...copyBody(0, 1)]),
   ]);
 }
 
@@ -77,14 +83,13 @@ function moduleBytes(heapShared) {
  * exporting move(dst, src, len), a memory.copy within it.
  */
 function moverBytes() {
-  const body = [0, 0x20, 0, 0x20, 1, 0x20, 2, 0xfc, 0x0a, 0, 0, 0x0b];
   return new Uint8Array([
     0x00, 0x61, 0x73, 0x6d, 0x01, 0x00, 0x00, 0x00,
     ...section(1, [1, 0x60, 3, 0x7f, 0x7f, 0x7f, 0]),
-    ...section(2, [1, ...name('m'), ...name('memory'), 0x02, 0x03, 0, ...leb(65536)]),
+    ...section(2, [1, ...memoryImport('memory', [0x03, 0, ...leb(65536)])]),
     ...section(3, [1, 0]),
     ...section(7, [1, ...name('move'), 0x00, 0]),
-    ...section(10, [1, ...leb(body.length), ...body]),
+    ...section(10, [1, ...copyBody(0, 0)]),
   ]);
 }
 
