@@ -53,14 +53,28 @@ def _resident_bytes(path):
         m.close()
 
 
-def _write_plain(path, megabytes):
-    """Write `megabytes` MiB into a new file, with no advice."""
+def _write(path, megabytes, advised):
+    """
+    Write `megabytes` MiB of numbered blocks into a new file; return their SHA-256.
+
+    The first 64 MiB are on the disk (fdatasync) before the rest is written.
+    With `advised`, WrittenPages (16 MiB steps and lag) follows the writes.
+    """
+    digest = hashlib.sha256()
     fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
+    pages = WrittenPages(fd, step=16 * MIB, lag=16 * MIB) if advised else None
     try:
         for i in range(megabytes):
-            os.write(fd, i.to_bytes(4, 'little') * (MIB // 4))
+            block = i.to_bytes(4, 'little') * (MIB // 4)
+            digest.update(block)
+            os.write(fd, block)
+            if i == 63:
+                os.fdatasync(fd)  # the first 64 MiB on the disk: their pages may go
+            if pages is not None:
+                pages.wrote_up_to((i + 1) * MIB)
     finally:
         os.close(fd)
+    return digest.hexdigest()
 
 
 def test_written_pages_are_let_go_of_and_nothing_is_lost(tmp_path):
@@ -68,28 +82,16 @@ def test_written_pages_are_let_go_of_and_nothing_is_lost(tmp_path):
         pytest.skip(f'{tmp_path} is in memory (tmpfs): its pages cannot be let go of; '
                     'run with --basetemp on a disk')
     kept = tmp_path / 'kept.bin'
-    _write_plain(kept, 80)
+    _write(kept, 80, advised=False)
     # the measure sees a file's pages: written without advice, they all stay
     assert _resident_bytes(kept) >= 79 * MIB
 
     let_go = tmp_path / 'let_go.bin'
-    fd = os.open(let_go, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
-    pages = WrittenPages(fd, step=16 * MIB, lag=16 * MIB)
-    digest = hashlib.sha256()
-    try:
-        for i in range(80):
-            block = i.to_bytes(4, 'little') * (MIB // 4)
-            digest.update(block)
-            os.write(fd, block)
-            if i == 63:
-                os.fdatasync(fd)  # the first 64 MiB on the disk: their pages may go
-            pages.wrote_up_to((i + 1) * MIB)
-    finally:
-        os.close(fd)
+    digest = _write(let_go, 80, advised=True)
     # the call at 80 MiB dropped [.., 64 MiB): what stays is the last 16 MiB
     assert _resident_bytes(let_go) <= 17 * MIB
     with open(let_go, 'rb') as f:
-        assert hashlib.sha256(f.read()).hexdigest() == digest.hexdigest()
+        assert hashlib.sha256(f.read()).hexdigest() == digest
 
 
 def test_a_file_without_page_cache_advice_is_left_alone(tmp_path):

@@ -6,7 +6,7 @@ Benchmark record and replay (docs/record.md).
 
     python bench/record/run.py INSTALL_WASM [--seconds S]
 
-INSTALL_WASM: a ``colcon build --wasm`` of demo/src. Two measures:
+INSTALL_WASM: a ``colcon build --wasm`` of demo/src. Three measures:
 
 - replay speed of small messages: a bag of 1 kHz ``Chatter`` messages,
   written by ``rosbags``, played as fast as it goes (``--rate 100000``) while
@@ -49,21 +49,25 @@ import time
 CHATTER = 'demo_interfaces/msg/Chatter'
 
 
+def children_times():
+    """Return (CPU seconds, of which system) of the ended children so far."""
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime, usage.ru_stime
+
+
 def colcon_wasm(*args):
-    """Run colcon-wasm; return (exit status, stdout, stderr, CPU seconds, wall seconds)."""
+    """Run colcon-wasm; return (exit status, stdout, stderr, CPU s, wall s, system CPU s)."""
     tool = Path(sys.executable).parent / 'colcon-wasm'
     with tempfile.TemporaryFile('w+') as out, tempfile.TemporaryFile('w+') as err:
-        before = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu, system = children_times()
         started = time.monotonic()
         code = subprocess.run([str(tool), *map(str, args)], stdout=out, stderr=err,
                               timeout=900).returncode
         wall = time.monotonic() - started
-        after = resource.getrusage(resource.RUSAGE_CHILDREN)
-        cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+        cpu_after, system_after = children_times()
         out.seek(0)
         err.seek(0)
-        colcon_wasm.system = after.ru_stime - before.ru_stime
-        return code, out.read(), err.read(), cpu, wall
+        return code, out.read(), err.read(), cpu_after - cpu, wall, system_after - system
 
 
 def paced_write(path, size, seconds):
@@ -80,11 +84,10 @@ def paced_write(path, size, seconds):
         '    if ahead > 0:\n'
         '        time.sleep(ahead)\n'
         'os.close(fd)\n')
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu, _ = children_times()
     subprocess.run([sys.executable, '-c', code, str(path), str(size), str(seconds)],
                    check=True, timeout=seconds + 300)
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    return children_times()[0] - cpu
 
 
 def small_bag(path, install, count, period_ns):
@@ -148,8 +151,8 @@ def measure(args, work):
     length = (args.messages - 1) / 1000
     for rate in ('20', '100000'):
         replay = work / f'replay{rate}.mcap'
-        code, out, err, cpu, wall = colcon_wasm('play', '--install-base', args.install,
-                                                '--record', replay, '--rate', rate, bag)
+        code, out, err, cpu, wall, _ = colcon_wasm(
+            'play', '--install-base', args.install, '--record', replay, '--rate', rate, bag)
         assert code == 0, out + err
         # the speed between the first and the last message the recorder kept (their
         # counts say how much bag time lies between them)
@@ -174,14 +177,13 @@ def measure(args, work):
         '    - {name: height, value: 480.0}\n')
     pairs = []
     for i in range(args.pairs):
-        code, out, err, base_cpu, _ = colcon_wasm('launch', '--install-base', args.install,
-                                                  '--duration', args.seconds, launch)
+        code, out, err, base_cpu, _, base_system = colcon_wasm(
+            'launch', '--install-base', args.install, '--duration', args.seconds, launch)
         assert code == 0, out + err
-        base_system = colcon_wasm.system
         recorded = work / f'load{i}.mcap'
-        code, out, err, rec_cpu, _ = colcon_wasm('launch', '--install-base', args.install,
-                                                 '--duration', args.seconds, '--record',
-                                                 recorded, launch)
+        code, out, err, rec_cpu, _, rec_system = colcon_wasm(
+            'launch', '--install-base', args.install, '--duration', args.seconds, '--record',
+            recorded, launch)
         assert code == 0, out + err
         chatter = times(recorded, '/chatter')
         frames = times(recorded, '/camera/image')
@@ -189,7 +191,7 @@ def measure(args, work):
         said = re.search(r'(\d+) lost before the recorder took them', err)
         lost = int(said.group(1)) if said else 0
         overhead = (rec_cpu - base_cpu) / args.seconds * 100
-        kernel = (colcon_wasm.system - base_system) / args.seconds * 100
+        kernel = (rec_system - base_system) / args.seconds * 100
         # the naive writer: the bag's bytes written at its rate into a new file; the bag is
         # kept meanwhile, so that both draw on memory in the same state
         floor_file = work / f'floor{i}.bin'
