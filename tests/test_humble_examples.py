@@ -165,6 +165,9 @@ def test_action_goal_and_result(platform, server, client):
         {'spawn': 'server', 'exe': platform.exe(ACTION_SERVER, server)},
         {'spawn': 'client', 'exe': platform.exe(ACTION_CLIENT, client)},
         {'exit': 'client', 'timeout': 60},
+        # the server logs "Goal Succeeded" after it sent the result: the client may
+        # have it, and have ended, before that line comes
+        {'wait': 'server', 'text': 'Goal Succeeded', 'timeout': 10},
     ])
     server_lines = lines(report, 'server')
     assert any('goal request with order 10' in t for t in server_lines)
@@ -201,6 +204,8 @@ def test_action_cancel(platform):
         {'spawn': 'client', 'exe': platform.exe(
             ACTION_CLIENT, 'action_client_not_composable_with_cancel')},
         {'exit': 'client', 'timeout': 60},
+        # logged after the canceled result went out, so perhaps after the client ended
+        {'wait': 'server', 'text': 'Goal Canceled', 'timeout': 10},
     ])
     assert any('Received request to cancel goal' in t for t in lines(report, 'server'))
     assert any('Goal Canceled' in t for t in lines(report, 'server'))
@@ -226,6 +231,9 @@ def test_an_action_server_executes_more_goals_than_its_pthread_pool(platform):
             {'spawn': f'again{i}', 'exe': platform.exe(
                 ACTION_CLIENT, 'action_client_member_functions')},
             {'exit': f'again{i}', 'timeout': 60})),
+        # the server logs each "Goal Succeeded" after it sent that result: the last
+        # client may have ended before the last line comes
+        {'wait': 'server', 'text': 'Goal Succeeded', 'count': at_once + 3, 'timeout': 10},
     ])
     assert sum('Goal Succeeded' in t for t in lines(report, 'server')) == at_once + 3, \
         explain(report)

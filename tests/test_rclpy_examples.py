@@ -146,7 +146,10 @@ def test_a_python_action_server_serves_the_cpp_clients_feedback_result_and_cance
     code, out = launch(overlay, 'examples_rclpy_minimal_action_server/server',
                        'examples_rclcpp_minimal_action_client/'
                        'action_client_not_composable_with_cancel', duration=25,
-                       until=finished('action_client_not_composable_with_cancel-2'))
+                       # the server logs "Goal canceled" after the result went out
+                       until=lambda out: finished(
+                           'action_client_not_composable_with_cancel-2')(out)
+                       and 'Goal canceled' in out)
     client = 'action_client_not_composable_with_cancel-2'
     assert log(out, 'server-1', 'minimal_action_server', 'Received cancel request'), out[-6000:]
     assert log(out, 'server-1', 'minimal_action_server', 'Goal canceled'), out[-6000:]
