@@ -458,6 +458,60 @@ def test_rosapi_node_details_answers_for_a_client_that_is_one_node(relay):
     assert len(nodes) == 6, nodes
 
 
+def test_rosapi_type_services_of_the_relay():
+    """topics_and_raw_types, services_for_type, service_node and the service details."""
+    types = {'messages': {
+        'p/msg/Point': {'fields': [{'name': 'x', 'type': 'float64'}],
+                        'definition': 'float64 x\n'},
+        'p/msg/Path': {'fields': [{'name': 'points', 'type': 'p/msg/Point', 'sequence': True}],
+                       'definition': 'p/Point[] points\n'},
+        'p/msg/Lost': {'fields': [{'name': 'x', 'type': 'int32'}]},
+        'p/srv/Add_Request': {'fields': [{'name': 'a', 'type': 'int64'}]},
+        'p/srv/Add_Response': {'fields': [{'name': 'sum', 'type': 'p/msg/Point'}]}},
+        'services': {'p/srv/Add': {'request': 'p/srv/Add_Request',
+                                   'response': 'p/srv/Add_Response'}}}
+    relay = Relay(types=[types])
+    try:
+        node, caller = Client(relay), Client(relay)
+        for c in (node, caller):
+            c.receive()
+        node.send({'op': 'colcon_wasm_graph', 'nodes': ['/adder'], 'version': 2})
+        node.send({'op': 'advertise', 'topic': '/path', 'type': 'p/Path'})
+        node.send({'op': 'advertise', 'topic': '/lost', 'type': 'p/msg/Lost'})
+        node.send({'op': 'advertise_service', 'service': '/add', 'type': 'p/Add'})
+        _rosapi(node, 'get_time', {}, 'sync')
+        raw = _rosapi(caller, 'topics_and_raw_types', {}, 'r')
+        assert raw['topics'] == ['/lost', '/path'] and raw['types'] == ['p/msg/Lost', 'p/msg/Path']
+        # the complete definition as rosbag2 writes it; rosapi's comment for one the relay lacks
+        assert raw['typedefs_full_text'][1] == (
+            'p/Point[] points\n\n' + '=' * 80 + '\nMSG: p/Point\nfloat64 x\n')
+        assert raw['typedefs_full_text'][0].startswith(
+            '# failed to get full definition text for p/msg/Lost: ')
+        assert _rosapi(caller, 'services_for_type', {'type': 'p/Add'}, 's') == {
+            'services': ['/add']}
+        assert _rosapi(caller, 'service_node', {'service': '/add'}, 'n') == {'node': '/adder'}
+        assert _rosapi(caller, 'service_node', {'service': '/rosapi/topics'}, 'n2') == {
+            'node': '/rosapi'}
+        assert _rosapi(caller, 'service_node', {'service': '/none'}, 'n3') == {'node': ''}
+        assert _rosapi(caller, 'service_type', {'service': '/rosapi/get_param'}, 't') == {
+            'type': 'rosapi_msgs/srv/GetParam'}
+        request = _rosapi(caller, 'service_request_details', {'type': 'p/srv/Add'}, 'q')
+        assert [(t['type'], t['fieldnames']) for t in request['typedefs']] == [
+            ('p/srv/Add_Request', ['a'])]
+        response = _rosapi(caller, 'service_response_details', {'type': 'p/Add'}, 'a')
+        assert [t['type'] for t in response['typedefs']] == ['p/srv/Add_Response', 'p/Point']
+        assert _rosapi(caller, 'service_request_details', {'type': 'p/None'}, 'x') == {
+            'typedefs': []}
+        # parameters of a node that has no parameter services: the reason comes back
+        got = _rosapi(caller, 'get_param', {'name': '/adder:x'}, 'g')
+        assert got == {'value': 'null', 'successful': False, 'reason': (
+            'no node /adder with parameter services is on the graph of the pages (nobody '
+            'serves /adder/get_parameters)')}
+        assert _rosapi(caller, 'get_param_names', {}, 'names') == {'names': []}
+    finally:
+        relay.close()
+
+
 def test_foxglove_parameter_values_both_ways():
     """Serve --foxglove: Foxglove parameters to rcl ParameterValues (JSON) and back."""
     from colcon_wasm.server.foxglove_parameters import from_rcl

@@ -288,3 +288,71 @@ def test_bad_listen_address_and_capability_file(install, tmp_path):
                           '--rosbridge-capabilities', str(caps), 'rmw_wasm_cpp_node_tests/probe'],
                          capture_output=True, text=True, timeout=60)
     assert bad.returncode == 1 and "unknown key 'fly'" in bad.stderr, bad.stderr
+
+
+def _check_params(r, node):
+    """Check what the `params` scenario of rosbridge_roslib.mjs saw of ``node`` (param_talker)."""
+    assert {f'{node}:greeting', f'{node}:period_ms', f'{node}:use_sim_time'} <= set(r['names'])
+    assert r['before'] == {'value': 'hello'}
+    assert r['set'] == {'set': True} and r['after'] == {'value': 'hi from roslibjs'}
+    assert r['setPeriod'] == {'set': True} and r['period'] == {'value': 250}
+    # rclcpp refuses a string for its integer parameter, and roslibjs is told why
+    assert r['wrongType']['failed'] == (
+        f'setting {node}:period_ms failed: Wrong parameter type, parameter {{period_ms}} is of '
+        'type {integer}, setting it to {string} is not allowed.')
+    assert r['periodStill'] == {'value': 250}
+    assert r['missing'] == {'failed': f"{node} has no parameter 'no_such'"}
+    assert r['noNode']['failed'].startswith(
+        'no node /nobody with parameter services is on the graph'), r['noNode']
+    assert r['malformed']['failed'].startswith("malformed parameter name 'no_colon'"), r
+    assert r['defaulted'] == {'value': '7', 'successful': True, 'reason': ''}
+    assert r['has'] == {'exists': True} and r['hasNot'] == {'exists': False}
+    assert r['notJson']['successful'] is False
+    assert r['notJson']['reason'].startswith('the value of set_param must be JSON text'), r
+    assert r['deleteMissing'] == {
+        'failed': f"cannot delete {node}:no_such: {node} has no parameter 'no_such'"}
+    assert r['deleteDeclared'] == {
+        'failed': f'deleting {node}:greeting failed: cannot undeclare an statically typed '
+                  'parameter'}
+    assert r['afterDelete'] == {'value': 'hi from roslibjs'}
+
+
+def test_roslibjs_params_of_an_rclcpp_node(server):
+    """Launch --rosbridge: roslibjs' getParams and Param on /talker's parameters, and failures."""
+    _check_params(node_script('rosbridge_roslib.mjs', 'params', server.url, '/talker',
+                              timeout=120), '/talker')
+
+
+def test_roslibjs_params_of_a_page_node_through_the_relay(install):
+    """
+    Serve --rosbridge: roslibjs' Param on an rclcpp node in a page.
+
+    The relay answers rosapi's parameter services by calling the node's rcl
+    parameter services, which the page advertised to it; the answers are
+    those of the Node.js server (the test above).
+    """
+    from concurrent.futures import ThreadPoolExecutor
+    from served_page import explain_page
+    from served_page import ServedPage
+    probe = {'pkg': 'rmw_wasm_cpp_node_tests', 'exe': 'probe'}
+    tab = [
+        dict(probe, start='talker', args=['param_talker']),
+        dict(probe, start='listener', args=['listener']),
+        {'until': "colconWasm.session.bridge && colconWasm.session.bridge.state === 'connected' "
+                  '&& colconWasm.session.bridge.relay'},
+        {'wait': 'listener', 'text': 'HEARD roslibjs is done', 'timeoutMs': 150000},
+    ]
+    with ServedPage(install, args=['--rosbridge', '127.0.0.1:0']) as served:
+        with ThreadPoolExecutor(1) as pool:
+            page = pool.submit(served.run, tab, 180000)
+            try:
+                node_script('rosbridge_roslib.mjs', 'ready', served.rosbridge_url, '/chatter',
+                            '/param_talker', '/param_talker/get_parameters', timeout=90)
+                r = node_script('rosbridge_roslib.mjs', 'params', served.rosbridge_url,
+                                '/param_talker', timeout=120)
+            finally:
+                node_script('rosbridge_roslib.mjs', 'say', served.rosbridge_url,
+                            'roslibjs is done', timeout=30)
+            result = page.result(timeout=300)
+    assert result['ok'], explain_page(result)
+    _check_params(r, '/param_talker')

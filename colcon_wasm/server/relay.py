@@ -51,6 +51,10 @@ from colcon_wasm.error import ColconWasmError
 from colcon_wasm.server.relay_forms import decode_request
 from colcon_wasm.server.relay_forms import Forms
 from colcon_wasm.server.relay_forms import jsonable
+from colcon_wasm.server.relay_forms import normalize
+from colcon_wasm.server.relay_forms import PRIMITIVES
+from colcon_wasm.server.relay_rosapi import Rosapi
+from colcon_wasm.server.relay_rosapi import rosapi_service
 from colcon_wasm.server.relay_topics import Message
 from colcon_wasm.server.relay_topics import Subscription
 from colcon_wasm.server.relay_topics import Topics
@@ -61,12 +65,6 @@ logger = colcon_logger.getChild(__name__)
 LEVELS = ('none', 'error', 'warning', 'info')
 NAME = re.compile(r'^(/[A-Za-z_~][A-Za-z0-9_]*)+$')
 ID_IN_TEXT = re.compile(r'"id"\s*:\s*("(?:[^"\\]|\\.)*"|-?\d+)')
-ROSAPI = ('topics', 'topics_for_type', 'services', 'nodes', 'node_details', 'topic_type',
-          'service_type', 'publishers', 'subscribers', 'service_providers', 'message_details',
-          'action_servers', 'get_time', 'get_ros_version')
-PRIMITIVES = {'bool', 'byte', 'char', 'int8', 'uint8', 'int16', 'uint16', 'int32', 'uint32',
-              'int64', 'uint64', 'float32', 'float64', 'string', 'wstring'}
-ROSAPI_NAMES = {'float64': 'double', 'float32': 'float', 'bool': 'boolean', 'byte': 'octet'}
 
 
 class RequestError(ColconWasmError):
@@ -103,11 +101,6 @@ def _raw_publish(msg):
     m = msg.get('msg')
     return msg.get('op') == 'publish' and isinstance(m, dict) and isinstance(
         m.get('bytes'), (bytes, bytearray)) and set(m) <= {'bytes', 'secs', 'nsecs'}
-
-
-def _normalize(type_name, kind='msg'):
-    parts = type_name.strip().split('/')
-    return f'{parts[0]}/{kind}/{parts[1]}' if len(parts) == 2 else type_name.strip()
 
 
 class Peer:
@@ -183,6 +176,7 @@ class Relay:
         self.topics = Topics(self)
         self._numbers = itertools.count(1)
         self._ids = itertools.count(1)
+        self.rosapi = Rosapi(self)
         self._stop = threading.Event()
         threading.Thread(target=self._expire_loop, daemon=True).start()
 
@@ -367,7 +361,7 @@ class Relay:
 
     def _op_advertise(self, peer, msg):
         topic = _name(msg, 'topic')
-        type_name = _normalize(_field(msg, 'type', 'str', True))
+        type_name = normalize(_field(msg, 'type', 'str', True))
         self._check_type('advertise', 'type', type_name)
         known = self._known_type(topic)
         if known and known != type_name:
@@ -385,7 +379,7 @@ class Relay:
     def _op_subscribe(self, peer, msg):
         topic = _name(msg, 'topic')
         given = _field(msg, 'type', 'str')
-        type_name = _normalize(given) if given else self._known_type(topic)
+        type_name = normalize(given) if given else self._known_type(topic)
         if given:
             self._check_type('subscribe', 'type', type_name)
         compression = _field(msg, 'compression', 'str') or 'none'
@@ -429,7 +423,7 @@ class Relay:
         if not isinstance(msg['msg'], dict):
             raise RequestError("publish: field 'msg' must be a JSON object")
         if topic not in peer.publications:
-            known = self._known_type(topic) or (_normalize(msg['type'])
+            known = self._known_type(topic) or (normalize(msg['type'])
                                                 if isinstance(msg.get('type'), str) else None)
             if not known:
                 raise RequestError(f"publish: cannot infer the type of topic '{topic}': advertise "
@@ -472,7 +466,7 @@ class Relay:
 
     def _op_advertise_service(self, peer, msg):
         name = _name(msg, 'service')
-        type_name = _normalize(_field(msg, 'type', 'str', True), 'srv')
+        type_name = normalize(_field(msg, 'type', 'str', True), 'srv')
         if self.service_types and type_name not in self.service_types:
             raise RequestError("advertise_service: field 'type' names an unknown service type "
                                f"'{type_name}'")
@@ -485,12 +479,18 @@ class Relay:
 
     def _op_call_service(self, peer, msg):
         name = _name(msg, 'service')
-        if name.startswith('/rosapi/') and name[8:] in ROSAPI:
-            out = {'op': 'service_response', 'service': msg['service'], 'result': True,
-                   'values': self._rosapi(name[8:], msg.get('args') or {})}
-            if msg.get('id') is not None:
-                out['id'] = msg['id']
-            peer.send(out)
+        rosapi = rosapi_service(name)
+        if rosapi:
+            def answer(values):
+                out = {'op': 'service_response', 'service': msg['service'], 'result': True,
+                       'values': values}
+                if msg.get('id') is not None:
+                    out['id'] = msg['id']
+                peer.send(out)
+                if values.get('successful') is False:
+                    peer.status('warning', f"call_service {name}: {values.get('reason')}",
+                                msg.get('id'))
+            self.rosapi.call(rosapi, msg.get('args') or {}, answer)
             return
         timeout = msg.get('timeout')
         timeout = self.call_timeout if not isinstance(timeout, (int, float)) else (
@@ -513,6 +513,23 @@ class Relay:
                              'deadline': None if timeout is None else time.monotonic() + timeout}
         provider.send({'op': 'call_service', 'id': rid, 'service': name,
                        'args': msg.get('args') or {}})
+
+    def request(self, name, args, timeout, caller):
+        """
+        Call a client's service for the relay itself (under its lock).
+
+        :param name: the service, which a client advertised
+        :param args: the request (rosbridge JSON)
+        :param timeout: seconds until the call fails
+        :param caller: gets the ``service_response`` (``send``) as a client would,
+          ``result: false`` with the reason when the call failed
+        """
+        provider, _ = self.services[name]
+        rid = f'relay:{next(self._ids)}'
+        self.pending[rid] = {'caller': caller, 'id': None, 'kind': 'service', 'name': name,
+                             'provider': provider, 'timeout': timeout,
+                             'deadline': time.monotonic() + timeout}
+        provider.send({'op': 'call_service', 'id': rid, 'service': name, 'args': args})
 
     def _op_service_response(self, peer, msg):
         rid = str(_field(msg, 'id', 'id', True))
@@ -630,121 +647,7 @@ class Relay:
                 kind in ('int64', 'uint64') and isinstance(v, str) and v.strip().lstrip(
                     '-').isdigit()), f'an integer ({kind})'
         else:
-            self._check(op, _normalize(kind), v, path)
+            self._check(op, normalize(kind), v, path)
             return
         if not ok:
             raise RequestError(f"{where}'{path}': expected {label}, got {json.dumps(v)[:40]}")
-
-    # ------------------------------------------------------------ rosapi
-
-    def _topics(self):
-        topics = {}
-        for p in self.peers:
-            for topic, type_name in p.publications.items():
-                topics.setdefault(topic, type_name)
-            for topic, sub in p.subscriptions.items():
-                if sub.type:
-                    topics.setdefault(topic, sub.type)
-        return dict(sorted(topics.items()))
-
-    def _rosapi(self, name, args):
-        def arg(key):
-            value = args.get(key) if isinstance(args, dict) else None
-            return value if isinstance(value, str) else ''
-
-        def full(value):
-            return value if value.startswith('/') else f'/{value}'
-
-        topics = self._topics()
-        services = sorted(set(self.services) | {f'/rosapi/{n}' for n in ROSAPI})
-        if name == 'topics':
-            return {'topics': list(topics), 'types': list(topics.values())}
-        if name == 'topics_for_type':
-            return {'topics': [t for t, ty in topics.items() if ty == _normalize(arg('type'))]}
-        if name == 'services':
-            return {'services': services}
-        if name == 'nodes':
-            nodes = {'/rosapi', '/rosbridge_websocket'}
-            for p in self.peers:
-                nodes.update(p.label)
-            return {'nodes': sorted(nodes)}
-        if name == 'node_details':
-            return self._node_details(full(arg('node')))
-        if name == 'topic_type':
-            return {'type': topics.get(full(arg('topic')), '')}
-        if name == 'service_type':
-            entry = self.services.get(full(arg('service')))
-            return {'type': entry[1] if entry else ''}
-        if name in ('publishers', 'subscribers'):
-            topic = full(arg('topic'))
-            table, kind = ('publications', 'publishing') if name == 'publishers' else (
-                'subscriptions', 'subscribing')
-            return {name: sorted({n for p in self.peers if topic in getattr(p, table)
-                                  for n in p.holders(kind, topic)})}
-        if name == 'service_providers':
-            service = full(arg('service'))
-            entry = self.services.get(service)
-            return {'providers': entry[0].holders('services', service) if entry else []}
-        if name == 'action_servers':
-            return {'action_servers': sorted(self.actions)}
-        if name == 'message_details':
-            return {'typedefs': self._typedefs(arg('type'))}
-        if name == 'get_time':
-            now = time.time()
-            return {'time': {'sec': int(now), 'nanosec': int((now % 1) * 1e9)}}
-        return {'version': 2, 'distro': 'humble'}
-
-    def _node_details(self, node):
-        """
-        Answer rosapi node_details: the endpoints of ``node``.
-
-        A colcon-wasm client reports which of its nodes holds which endpoint
-        (``colcon_wasm_graph`` with ``endpoints``: all of the node's topics and
-        the services it serves, bridged or not, as rosapi lists them). A client
-        that reports none (roslibjs, roslibpy, an older colcon-wasm client)
-        stands for one node, its label: its advertised, subscribed and served
-        names are that node's. A node nobody stands for gets empty lists.
-        """
-        out = {'subscribing': set(), 'publishing': set(), 'services': set()}
-        if node == '/rosapi':
-            out['services'] = {f'/rosapi/{n}' for n in ROSAPI}
-        for p in self.peers:
-            if p.endpoints:
-                for kind, names in p.endpoints.get(node, {}).items():
-                    out[kind] |= names
-            elif p.label == [node]:
-                out['subscribing'] |= set(p.subscriptions)
-                out['publishing'] |= set(p.publications)
-                out['services'] |= {n for n, (q, _) in self.services.items() if q is p}
-        return {kind: sorted(names) for kind, names in out.items()}
-
-    def _typedefs(self, type_name):
-        out, seen = [], set()
-
-        def visit(full):
-            if full in seen or full not in self.messages:
-                return
-            seen.add(full)
-            fields = self.messages[full].get('fields', [])
-            nested = []
-            td = {'type': full.replace('/msg/', '/'), 'fieldnames': [], 'fieldtypes': [],
-                  'fieldarraylen': [], 'examples': [], 'constnames': [], 'constvalues': []}
-            for f in fields:
-                primitive = f['type'] in PRIMITIVES
-                td['fieldnames'].append(f['name'])
-                td['fieldtypes'].append(ROSAPI_NAMES.get(f['type'], f['type']) if primitive
-                                        else _normalize(f['type']).replace('/msg/', '/'))
-                length = f.get('array_size', 0 if f.get('sequence') else -1)
-                td['fieldarraylen'].append(length)
-                td['examples'].append('[]' if length >= 0 else '{}' if not primitive else '0')
-                if not primitive:
-                    nested.append(_normalize(f['type']))
-            for c in self.messages[full].get('constants', []):
-                td['constnames'].append(c['name'])
-                td['constvalues'].append(str(c.get('value')))
-            out.append(td)
-            for n in nested:
-                visit(n)
-
-        visit(_normalize(type_name))
-        return out

@@ -41,6 +41,9 @@ NUMERIC = {'byte': 'B', 'char': 'B', 'uint8': 'B', 'int8': 'b', 'int16': 'h', 'u
            'float64': 'd'}
 FLOATS = {'float32', 'float64'}
 BYTES = {'byte', 'char', 'uint8'}
+"""The primitive field types of ROS 2 messages."""
+PRIMITIVES = {'bool', 'byte', 'char', 'int8', 'uint8', 'int16', 'uint16', 'int32', 'uint32',
+              'int64', 'uint64', 'float32', 'float64', 'string', 'wstring'}
 # RFC 8746 little-endian typed-array tags, as cbor.mjs writes them
 TAGS = {'int8': 72, 'int16': 77, 'uint16': 69, 'int32': 78, 'uint32': 70, 'int64': 79,
         'uint64': 71, 'float32': 85, 'float64': 86}

@@ -138,6 +138,57 @@ const scenarios = {
     return { goals };
   },
 
+  /**
+   * roslibjs' getParams and Param (get, set, delete) on an rclcpp node's parameters (argv:
+   * NODE, a probe param_talker), then rosapi's has_param and get_param's default, and the
+   * failures, each with the reason roslibjs hands its failure callback.
+   */
+  async params() {
+    const [node] = process.argv.slice(4);
+    const ros = await connect();
+    const param = (name) => new ROSLIB.Param({ ros, name: `${node}:${name}` });
+    const get = (p) => within(10000, `getting ${p.name}`, new Promise((ok) => p.get((v) => ok({ value: v }), (e) => ok({ failed: e }))));
+    const set = (p, v) => within(10000, `setting ${p.name}`, new Promise((ok) => p.set(v, () => ok({ set: true }), (e) => ok({ failed: e }))));
+    const del = (p) => within(10000, `deleting ${p.name}`, new Promise((ok) => p.delete(() => ok({ deleted: true }), (e) => ok({ failed: e }))));
+    const rosapi = (service, args) => within(10000, `rosapi/${service}`, cb((ok, fail) => new ROSLIB.Service({
+      ros, name: `/rosapi/${service}`, serviceType: 'rosapi_msgs/srv/X',
+    }).callService(args, ok, fail)));
+    const out = {};
+    out.names = await within(10000, 'getParams', cb((ok, fail) => ros.getParams(ok, fail)));
+    out.before = await get(param('greeting'));
+    out.set = await set(param('greeting'), 'hi from roslibjs');
+    out.after = await get(param('greeting'));
+    out.setPeriod = await set(param('period_ms'), 250);
+    out.period = await get(param('period_ms'));
+    out.wrongType = await set(param('period_ms'), 'fast');
+    out.periodStill = await get(param('period_ms'));
+    out.missing = await get(param('no_such'));
+    out.noNode = await get(new ROSLIB.Param({ ros, name: '/nobody:x' }));
+    out.malformed = await get(new ROSLIB.Param({ ros, name: 'no_colon' }));
+    out.defaulted = await rosapi('get_param', { name: `${node}:no_such`, default_value: '7' });
+    out.has = await rosapi('has_param', { name: `${node}:greeting` });
+    out.hasNot = await rosapi('has_param', { name: `${node}:no_such` });
+    out.notJson = await rosapi('set_param', { name: `${node}:greeting`, value: 'not json' });
+    out.deleteMissing = await del(param('no_such'));
+    out.deleteDeclared = await del(param('greeting'));
+    out.afterDelete = await get(param('greeting'));
+    ros.close();
+    return out;
+  },
+
+  /** Publish TEXT (argv) on /chatter ten times, 100 ms apart: what a listener waits for. */
+  async say() {
+    const [text] = process.argv.slice(4);
+    const ros = await connect();
+    const chatter = new ROSLIB.Topic({ ros, name: '/chatter', messageType: 'std_msgs/msg/String' });
+    for (let i = 0; i < 10; i++) {
+      chatter.publish({ data: text });
+      await sleep(100);
+    }
+    ros.close();
+    return { said: text };
+  },
+
   /** throttle_rate and queue_length on a 10 Hz topic, each on its own connection. */
   async throttle() {
     const count = async (options, ms) => {

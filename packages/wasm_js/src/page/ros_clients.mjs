@@ -179,10 +179,14 @@ export class ParameterClient {
     return response.result.names.slice().sort();
   }
 
-  /** Values of parameters: [{name, type, value}]. */
+  /**
+   * Values of parameters: [{name, type, value}]. rclcpp answers no values at all when one of
+   * the names is not declared: each name is then 'not set'.
+   */
   async get(names) {
     const response = await this.request('GetParameters', { names });
-    return names.map((name, i) => ({ name, ...parameterValue(response.values[i]) }));
+    const unset = { type: ParameterType.NOT_SET };
+    return names.map((name, i) => ({ name, ...parameterValue(response.values[i] || unset) }));
   }
 
   /** Set one parameter; resolves to {successful, reason}. */

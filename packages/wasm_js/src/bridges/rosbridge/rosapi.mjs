@@ -7,7 +7,9 @@
  * roslibjs' getTopics, getNodes, getServices, getTopicType,
  * getMessageDetails, getParams and Param use, and the rest of rosapi_msgs'
  * services. They are listed in the graph views of rosapi as services of a
- * `/rosapi` node, as with rosbridge_server.
+ * `/rosapi` node, as with rosbridge_server. The parameter services answer
+ * rosapi_msgs' `successful` and `reason` (roslibjs 2 hands the reason to
+ * its failure callback), as serve's relay does (relay_parameters.py).
  *
  * @module bridges/rosbridge/rosapi
  */
@@ -42,10 +44,51 @@ export function isRosapi(service) {
 const str = (args, name) => (typeof args[name] === 'string' ? args[name] : '');
 const full = (name) => (name.startsWith('/') ? name : `/${name}`);
 
-function nodeAndParam(name) {
+/** [node, param] of rosapi's `<node>:<param>` name, or {reason} naming what is wrong. */
+function splitName(args) {
+  const name = str(args, 'name');
   const i = name.lastIndexOf(':');
-  if (i <= 0) throw new Error(`malformed parameter name '${name}': expected <node_name>:<param_name>, e.g. /talker:rate`);
+  if (i <= 0 || i === name.length - 1) {
+    return { reason: `malformed parameter name '${name}': expected <node_name>:<param_name>, e.g. /talker:greeting` };
+  }
   return [full(name.slice(0, i)), name.slice(i + 1)];
+}
+
+/** A failed parameter request, with rosapi_msgs' successful and reason. */
+const failed = (reason) => ({ successful: false, reason });
+
+/** rosapi's answer for a parameter that is not there: the request's default, as JSON text. */
+function defaultOf(args) {
+  const d = str(args, 'default_value');
+  if (d === '') return 'null';
+  try {
+    return stringifyJson(parseJson(d));
+  } catch {
+    return JSON.stringify(d);
+  }
+}
+
+/** Why a node's parameter service cannot be called, or '' when it can. */
+function unreachable(g, node, service) {
+  const name = `${node}/${service}`;
+  if (g.services.some((s) => s.name === name)) return '';
+  return `no node ${node} with parameter services is on the graph (nobody serves ${name})`;
+}
+
+/** Get the parameter a request names: {found, value, node, param} or {found: false, why}. */
+async function parameterOf(g, paramsOf, args) {
+  const split = splitName(args);
+  if (split.reason) return { found: false, why: split.reason };
+  const [node, param] = split;
+  const why = unreachable(g, node, 'get_parameters');
+  if (why) return { found: false, why };
+  try {
+    const [v] = await paramsOf(node).get([param]);
+    if (v.type !== 'not set') return { found: true, value: v.value, node, param };
+    return { found: false, why: `${node} has no parameter '${param}'` };
+  } catch (e) {
+    return { found: false, why: `${node} did not answer: ${e.message}` };
+  }
 }
 
 /** A JS value for a JSON text, typed as ros2 param set types it. */
@@ -56,6 +99,7 @@ function parameterFromJson(text) {
   } catch {
     throw new Error(`the value of set_param must be JSON text (e.g. 5, 2.5, "text", [1, 2]), got ${JSON.stringify(text)}`);
   }
+  if (value === null) return ''; // as rosapi: null sets an empty string
   if (typeof value === 'number' && /[.eE]/.test(text)) return { type: ParameterType.DOUBLE, double_value: value };
   return value;
 }
@@ -123,39 +167,44 @@ export async function rosapiCall(core, service, args) {
       return { typedefs: converter.typedefs(name === 'service_request_details' ? entry.request : entry.response) };
     }
     case 'get_param': {
-      const [node, param] = nodeAndParam(str(args, 'name'));
-      try {
-        const [v] = await paramsOf(node).get([param]);
-        if (v.type !== 'not set') return { value: stringifyJson(v.value) };
-      } catch {
-        // a node without parameter services: the default, as rosapi does
-      }
-      const d = str(args, 'default_value');
-      return { value: d === '' ? 'null' : d };
+      const got = await parameterOf(g, paramsOf, args);
+      if (got.found) return { value: stringifyJson(got.value), successful: true, reason: '' };
+      if (str(args, 'default_value') !== '') return { value: defaultOf(args), successful: true, reason: '' };
+      return { value: 'null', successful: false, reason: got.why };
     }
-    case 'has_param': {
-      const [node, param] = nodeAndParam(str(args, 'name'));
-      try {
-        const [v] = await paramsOf(node).get([param]);
-        return { exists: v.type !== 'not set' };
-      } catch {
-        return { exists: false };
-      }
-    }
+    case 'has_param': return { exists: (await parameterOf(g, paramsOf, args)).found };
     case 'set_param': {
-      const [node, param] = nodeAndParam(str(args, 'name'));
-      const value = parameterFromJson(str(args, 'value'));
+      const split = splitName(args);
+      if (split.reason) return failed(split.reason);
+      const [node, param] = split;
+      let value;
+      try {
+        value = parameterFromJson(str(args, 'value'));
+      } catch (e) {
+        return failed(e.message);
+      }
+      const why = unreachable(g, node, 'set_parameters');
+      if (why) return failed(`cannot set ${node}:${param}: ${why}`);
       const client = paramsOf(node);
-      const r = value && value.type === ParameterType.DOUBLE
-        ? (await client.request('SetParameters', { parameters: [{ name: param, value }] })).results[0]
-        : await client.set(param, value);
-      if (!r.successful) throw new Error(`setting ${node}:${param} failed: ${r.reason || 'refused by the node'}`);
-      return {};
+      let r;
+      try {
+        r = value && value.type === ParameterType.DOUBLE
+          ? (await client.request('SetParameters', { parameters: [{ name: param, value }] })).results[0]
+          : await client.set(param, value);
+      } catch (e) {
+        return failed(`cannot set ${node}:${param}: ${e.message}`);
+      }
+      if (!r.successful) return failed(`setting ${node}:${param} failed: ${r.reason || 'refused by the node'}`);
+      return { successful: true, reason: '' };
     }
     case 'delete_param': {
-      const [node, param] = nodeAndParam(str(args, 'name'));
-      await paramsOf(node).request('SetParameters', { parameters: [{ name: param, value: { type: ParameterType.NOT_SET } }] });
-      return {};
+      const got = await parameterOf(g, paramsOf, args);
+      if (!got.found) return failed(`cannot delete ${str(args, 'name')}: ${got.why}`);
+      const r = (await paramsOf(got.node).request('SetParameters', {
+        parameters: [{ name: got.param, value: { type: ParameterType.NOT_SET } }],
+      })).results[0];
+      if (!r.successful) return failed(`deleting ${got.node}:${got.param} failed: ${r.reason || 'refused by the node'}`);
+      return { successful: true, reason: '' };
     }
     case 'get_param_names': {
       const names = [];
