@@ -75,6 +75,10 @@ class _FileSink:
         self.captured.clear()
         return data
 
+    def host_wrote_up_to(self, end):
+        """Note that the host's writes reached ``end``: the pages behind it can go."""
+        self.pages.wrote_up_to(end)
+
     def take_back(self, good):
         """
         Write the file here again, after the host's last whole write.
@@ -202,7 +206,7 @@ class BagWriter:
         for channel, count, _ in channels:
             self._count(channel, count, start, end)
         self._host_good = report['offset'] + report['chunkLength'] + report['indexLength']
-        self._sink.pages.wrote_up_to(self._host_good)
+        self._sink.host_wrote_up_to(self._host_good)
 
     def host_failed(self, report):
         """

@@ -57,11 +57,17 @@ export class ChunkPool {
     for (let i = 0; i < slots; i++) this.views.push(new Uint8Array(sab, base + i * stride, slotBytes));
     /** where a message is copied before `move` puts it in a slot (aligned as the bus blocks) */
     this.staging = new Uint8Array(sab, base + slots * stride, slotBytes);
-    /**
-     * move(dstOffset, srcOffset, len): memory.copy within the pool's memory
-     * (offsets from its start, as `byteOffset`s), or null where the engine has none
-     */
-    this.move = memoryMover(memory);
+    this._move = undefined;
+  }
+
+  /**
+   * move(dstOffset, srcOffset, len): memory.copy within the pool's memory
+   * (offsets from its start, as `byteOffset`s), or null where the engine has
+   * none. Made on first use: only the recording worker's side moves.
+   */
+  get move() {
+    if (this._move === undefined) this._move = memoryMover(this.memory);
+    return this._move;
   }
 
   /** Take a free slot: its number, or -1 when every slot is taken. */
