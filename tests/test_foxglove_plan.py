@@ -74,3 +74,8 @@ def test_schema_file_has_full_texts_and_names_what_cannot_be_assembled():
     assert not os.path.exists(path)
     with schema_file({}, _Space(messages)) as nothing:
         assert nothing is None
+    # the rosbridge server's rosapi (topics_and_raw_types) reads the same file
+    description = {'rosbridge': {'host': '127.0.0.1', 'port': 0}}
+    with schema_file(description, _Space(messages)) as path:
+        assert description['rosbridge']['schemas'] == path and os.path.exists(path)
+        assert 'shares' not in description['rosbridge']

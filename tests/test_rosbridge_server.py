@@ -76,6 +76,10 @@ def test_roslibjs_graph_fields_publish_and_call(server):
         assert node in r['nodes'], r['nodes']
     assert '/add' in r['services'] and '/rosapi/topics' in r['services']
     assert r['topicType'] == 'std_msgs/msg/String'
+    # rosapi's topics_and_raw_types: each type's complete definition, as rosbag2 writes it
+    raw = dict(zip(r['raw']['topics'], r['raw']['typedefs_full_text']))
+    assert re.search(r'^string data$', raw['/chatter'], re.M), raw['/chatter']
+    assert f"\n{'=' * 80}\nMSG: std_msgs/Header\n" in raw['/bench/pong'], raw['/bench/pong']
     assert r['details'][:2] == ['sensor_msgs/Image', 'std_msgs/Header']
     assert r['decoded']['data'] == ['uint8'] and r['decoded']['header']['frame_id'] == 'string'
     assert all(h.startswith('hello ') for h in r['heard']), r['heard']

@@ -86,27 +86,31 @@ def schema_texts(install_space):
 @contextlib.contextmanager
 def schema_file(description, install_space):
     """
-    Write the schema texts for a plan's Foxglove server, for the host's run.
+    Write the schema texts for a plan's Foxglove and rosbridge servers, for the host's run.
 
-    The entry also gets ``shares``, each package's share folder, from which
-    the server answers ``fetchAsset`` of ``package://`` URIs.
+    Each server's entry gets the file as ``schemas``: the Foxglove server's
+    channel schemas, the rosbridge server's rosapi ``topics_and_raw_types``.
+    The Foxglove entry also gets ``shares``, each package's share folder,
+    from which the server answers ``fetchAsset`` of ``package://`` URIs.
 
-    Without a ``foxglove`` entry in ``description`` this does nothing. The
-    file is removed when the block ends.
+    Without a ``foxglove`` or ``rosbridge`` entry in ``description`` this
+    does nothing. The file is removed when the block ends.
     """
-    entry = description.get('foxglove')
-    if not entry:
+    entries = [description[key] for key in ('foxglove', 'rosbridge') if description.get(key)]
+    if not entries:
         yield None
         return
-    fd, path = tempfile.mkstemp(prefix='colcon-wasm-foxglove-', suffix='.json')
+    fd, path = tempfile.mkstemp(prefix='colcon-wasm-schemas-', suffix='.json')
     try:
         with os.fdopen(fd, 'w', encoding='utf-8') as f:
             json.dump(schema_texts(install_space), f)
-        entry['schemas'] = path
-        # fetchAsset serves package:// files from these (as the ament index resolves them)
-        entry['shares'] = {name: str(package.share)
-                           for name, package in install_space.packages().items()
-                           if package.share.is_dir()}
+        for entry in entries:
+            entry['schemas'] = path
+        if description.get('foxglove'):
+            # fetchAsset serves package:// files from these (as the ament index resolves them)
+            description['foxglove']['shares'] = {
+                name: str(package.share) for name, package in install_space.packages().items()
+                if package.share.is_dir()}
         yield path
     finally:
         with contextlib.suppress(OSError):

@@ -69,6 +69,7 @@ const scenarios = {
     const services = await cb((ok, fail) => ros.getServices(ok, fail));
     const topicType = await cb((ok, fail) => ros.getTopicType('/chatter', ok, fail));
     const details = await cb((ok, fail) => ros.getMessageDetails('sensor_msgs/msg/Image', ok, fail));
+    const raw = await cb((ok, fail) => ros.getTopicsAndRawTypes(ok, fail));
     const heard = await collect(ros, { name: '/chatter', messageType: 'std_msgs/msg/String' }, 3, 10000);
     const out = new ROSLIB.Topic({ ros, name: '/chatter', messageType: 'std_msgs/msg/String' });
     for (let i = 0; i < 20; i++) {
@@ -81,7 +82,7 @@ const scenarios = {
     const missingError = await within(10000, 'the failing call', new Promise((resolve) => missing.callService({ a: 1, b: 2 }, () => resolve(null), resolve)));
     ros.close();
     return {
-      topics, nodes, services, topicType, decoded: ros.decodeTypeDefs(details), details: details.map((d) => d.type),
+      topics, nodes, services, topicType, decoded: ros.decodeTypeDefs(details), details: details.map((d) => d.type), raw,
       heard: heard.map((m) => m.data), sum, missingError,
     };
   },

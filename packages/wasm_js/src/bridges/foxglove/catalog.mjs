@@ -13,19 +13,6 @@
  * @module bridges/foxglove/catalog
  */
 
-import { readFileSync } from 'node:fs';
-
-/** The schema texts of the plan: {messages: {type: text}, errors: {type: why}}. */
-export function loadSchemas(path) {
-  if (!path) return { messages: {}, errors: {} };
-  try {
-    const data = JSON.parse(readFileSync(path, 'utf-8'));
-    return { messages: data.messages || {}, errors: data.errors || {} };
-  } catch (e) {
-    throw new Error(`cannot read the Foxglove schema texts ${path}: ${e.message}`);
-  }
-}
-
 /** The channels and services of the graph, and what changed since the last look. */
 export class Catalog {
   /**

@@ -4,7 +4,7 @@
 /**
  * The bridges of `colcon-wasm run|launch` (launch/run_plan.mjs): the
  * rosbridge server (`plan.rosbridge`: {host, port, token, capabilities,
- * limits}) and the client to a remote rosbridge server
+ * limits, schemas}) and the client to a remote rosbridge server
  * (`plan.rosbridge_connect`: {url, token, allow, deny, limits}), started on
  * the launch's Runtime before its processes; and the Foxglove server
  * (`plan.foxglove`, ../foxglove/launch.mjs); and the Zenoh gateway
@@ -34,7 +34,7 @@ export async function startBridges(plan, runtime, registry, { out, err }) {
     const spec = plan.rosbridge;
     const server = await RosbridgeServer.start({
       runtime, registry, host: spec.host, port: spec.port, token: spec.token,
-      capabilities: spec.capabilities || null, limits: spec.limits || {}, log,
+      capabilities: spec.capabilities || null, limits: spec.limits || {}, schemas: spec.schemas || null, log,
     });
     log('info', `rosbridge server listening on ${server.url}${spec.token ? ' (token required)' : ''}`);
     closers.push(() => server.close());

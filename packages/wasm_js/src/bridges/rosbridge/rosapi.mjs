@@ -15,6 +15,7 @@
  */
 
 import { normalizeTypeName } from '../../cdr.mjs';
+import { fullText } from '../common/schema_texts.mjs';
 import { ParameterClient, ParameterType } from '../../page/ros_clients.mjs';
 import { parseJson, stringifyJson } from './json.mjs';
 
@@ -128,7 +129,9 @@ export async function rosapiCall(core, service, args) {
       return { topics: topics.filter((t) => t.types.includes(type)).map((t) => t.name) };
     }
     case 'topics_and_raw_types': return {
-      topics: topics.map((t) => t.name), types: topics.map((t) => t.types[0] || ''), typedefs_full_text: topics.map(() => ''),
+      topics: topics.map((t) => t.name),
+      types: topics.map((t) => t.types[0] || ''),
+      typedefs_full_text: topics.map((t) => fullText(core.schemas, t.types[0] || '')),
     };
     case 'services': return { services: services.map((s) => s.name) };
     case 'services_for_type': {

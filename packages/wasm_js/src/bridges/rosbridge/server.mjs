@@ -22,6 +22,7 @@ import { timingSafeEqual } from 'node:crypto';
 import http from 'node:http';
 
 import { closeAll, listen } from '../common/listen.mjs';
+import { loadSchemas } from '../common/schema_texts.mjs';
 import { installActions } from './actions.mjs';
 import { BusLink } from './bus_link.mjs';
 import { Capabilities } from './capabilities.mjs';
@@ -76,6 +77,8 @@ export class RosbridgeServer {
    * @param {string} [options.token] clients must present it
    * @param {object} [options.capabilities] the capability list (capabilities.mjs), null: everything
    * @param {object} [options.limits] DEFAULT_LIMITS' keys
+   * @param {string} [options.schemas] the JSON file of the complete definitions (rosapi's
+   *   topics_and_raw_types; ../common/schema_texts.mjs)
    * @param {function(string, string): void} [options.log] (level, text)
    * @returns {Promise<RosbridgeServer>}
    * @throws {RosbridgeError} when the port cannot be had
@@ -86,7 +89,9 @@ export class RosbridgeServer {
     return server;
   }
 
-  constructor({ runtime, registry, host = '127.0.0.1', port = 9090, token = null, capabilities = null, limits = {}, log = null }) {
+  constructor({
+    runtime, registry, host = '127.0.0.1', port = 9090, token = null, capabilities = null, limits = {}, schemas = null, log = null,
+  }) {
     this.runtime = runtime;
     this.host = host;
     this.port = port;
@@ -97,6 +102,7 @@ export class RosbridgeServer {
     this.core = {
       registry,
       converter: new Converter(registry),
+      schemas: loadSchemas(schemas),
       capabilities: new Capabilities(capabilities),
       limits: { ...DEFAULT_LIMITS, ...limits },
       stats: { clients: 0, cutOff: 0, expired: 0, unanswered: 0, refused: 0 },
