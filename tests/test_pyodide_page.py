@@ -44,6 +44,11 @@ def test_python_nodes_in_the_page_talk_to_cpp_nodes():
         {'wait': 'py_listener', 'regex': r'I heard: \[Hello World: \d+\] count=\d+',
          'count': 2, 'timeoutMs': 90000},
         {'stop': 'py_talker'},
+        # the arguments field: the script's own (argparse) and ROS ones, as on a command line
+        {'python': 'py_args', 'file': str(SCRIPTS / 'args_talker.py'),
+         'args': '--count 2 --ros-args -p greeting:="Hi there" -r talk:=news'},
+        {'wait': 'py_args', 'text': '/py_args_talker on /news: count=2 greeting=Hi there',
+         'timeoutMs': 90000},
     ]
     with ServedPage(demo_build.demo_install(), args=['--pyodide', PYODIDE]) as page:
         result = page.run(steps, timeout_ms=180000)

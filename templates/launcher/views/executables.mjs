@@ -45,15 +45,24 @@ export class ExecutablesView {
       disabled: !python.pyodide,
       onclick: () => this.session.startPythonConsole().then((proc) => this.onConsole && this.onConsole(proc.id)).catch((e) => { consoleButton.title = e.message; }),
     }, 'Python console');
+    const error = h('div.error-text');
     file.onchange = async () => {
       const f = file.files[0];
       if (!f) return;
-      this.session.startPython(f.name, await f.text(), splitArgs(args.value));
       file.value = '';
+      let argv;
+      try {
+        argv = splitArgs(args.value);
+      } catch (e) {
+        error.textContent = `arguments of ${f.name}: ${e.message}; it was not started`;
+        return;
+      }
+      error.textContent = '';
+      this.session.startPython(f.name, await f.text(), argv);
     };
     this.pythonButtons = { buttons: [button, consoleButton], available: !!python.pyodide };
     return h('details.package.python', { open: true }, h('summary', {}, 'Python (rclpy)'),
-      h('div.row', {}, button, args, file), h('div.row', {}, consoleButton));
+      h('div.row', {}, button, args, file), error, h('div.row', {}, consoleButton));
   }
 
   row(pkg, exe) {
