@@ -11,6 +11,7 @@ import subprocess
 import sys
 import tempfile
 import threading
+import time
 
 REPO = Path(__file__).resolve().parents[1]
 _lock = threading.Lock()
@@ -26,6 +27,37 @@ def venv_tool(name):
     return path
 
 
+def _alive(pid):
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+def prune_orphaned_workspaces(max_age_hours=24):
+    """
+    Remove the demo workspaces of test runs that were killed (atexit never ran).
+
+    Each workspace names its test run's process in ``owner.pid``; one whose
+    process is gone is removed, and one without that file (being made, or
+    of an older checkout) once it is a day old.
+    """
+    limit = time.time() - max_age_hours * 3600
+    for folder in Path(tempfile.gettempdir()).glob('colcon-wasm-demo-*'):
+        try:
+            orphaned = not _alive(int((folder / 'owner.pid').read_text()))
+        except (OSError, ValueError):
+            try:
+                orphaned = folder.stat().st_mtime < limit
+            except OSError:
+                continue
+        if orphaned:
+            shutil.rmtree(folder, ignore_errors=True)
+
+
 def demo_install():
     """
     Build demo/src with ``colcon build --wasm`` in a scratch workspace.
@@ -36,8 +68,10 @@ def demo_install():
     with _lock:
         if 'install' in _built:
             return _built['install']
+        prune_orphaned_workspaces()
         workspace = Path(tempfile.mkdtemp(prefix='colcon-wasm-demo-'))
         atexit.register(shutil.rmtree, workspace, ignore_errors=True)  # once the run is over
+        (workspace / 'owner.pid').write_text(str(os.getpid()))
         shutil.copytree(REPO / 'demo' / 'src', workspace / 'src')
         command = ['nice', '-n', '10', str(venv_tool('colcon')), 'build', '--wasm',
                    '--event-handlers', 'console_cohesion+']
