@@ -12,7 +12,6 @@
  */
 
 import { MessageChannel, Worker } from 'node:worker_threads';
-import { PROC_KIND_TOOLS } from '../../layout.mjs';
 import { ChunkPool } from './chunk_pool.mjs';
 
 /** After a wake-up the worker naps this long: bursts are taken together. */
@@ -38,7 +37,7 @@ export class RecordingProcess {
    * @returns {Promise<RecordingProcess>}
    */
   static async start(runtime, { crc, chunkBytes, flushMs, onChunks }) {
-    const pid = await runtime._allocPid(PROC_KIND_TOOLS);
+    const { pid, release } = await runtime.helperProcess('recorder');
     const { port1, port2 } = new MessageChannel();
     const requests = new SharedArrayBuffer(4);
     const pool = ChunkPool.create(POOL_SLOTS, chunkBytes);
@@ -51,10 +50,10 @@ export class RecordingProcess {
       },
       transferList: [port2],
     });
-    return new RecordingProcess(runtime, pid, worker, port1, new Int32Array(requests), pool, onChunks);
+    return new RecordingProcess(runtime, { pid, release }, worker, port1, new Int32Array(requests), pool, onChunks);
   }
 
-  constructor(runtime, pid, worker, port, requests, pool, onChunks) {
+  constructor(runtime, { pid, release }, worker, port, requests, pool, onChunks) {
     this.runtime = runtime;
     /** The recording worker's bus process id. */
     this.pid = pid;
@@ -71,7 +70,7 @@ export class RecordingProcess {
         for (const p of this._pending.values()) p.reject(why);
         this._pending.clear();
         // its endpoints leave the graph as those of any process that ends
-        runtime._reap(pid, null).then(resolve, resolve);
+        release().then(resolve, resolve);
       });
     });
     /** the worker's error, when it failed */
