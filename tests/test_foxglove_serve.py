@@ -20,6 +20,7 @@ import sys
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import demo_build  # noqa: E402, I100, I202
+from foxglove_assets_case import check_fetch_asset  # noqa: E402
 from rosbridge_launch import node_script  # noqa: E402
 
 
@@ -86,3 +87,11 @@ def test_a_foxglove_client_sees_hears_and_drives_the_pages(tmp_path):
     assert after['subscribed']['/chatter'] == ['/foxglove_bridge'], after
     assert after['published']['/chatter'] == ['/foxglove_bridge', '/talker'], after
     assert after['services'] == before['services'], after
+
+
+def test_serve_foxglove_fetch_asset_serves_package_files_and_refuses_the_rest(tmp_path):
+    """Serve --foxglove answers fetchAsset with the install's package:// files, as launch does."""
+    from served_page import ServedPage
+    install = demo_build.demo_install()
+    with ServedPage(install, args=['--foxglove', '127.0.0.1:0']) as served:
+        check_fetch_asset(served.foxglove_url, install, tmp_path)

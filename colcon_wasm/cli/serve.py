@@ -122,6 +122,7 @@ def _python(args, server):
 
 def _foxglove(args, install_space, server):
     """Start the Foxglove server of serve: a client of the relay at /rosbridge."""
+    from colcon_wasm.server.foxglove_assets import Assets
     from colcon_wasm.server.foxglove_relay import FoxgloveRelayServer
     host, port = parse_listen_address(args.foxglove, option='--foxglove', default_port=8765)
     serve_host, serve_port = server.server_address[:2]
@@ -130,7 +131,8 @@ def _foxglove(args, install_space, server):
     serve_host = f'[{serve_host}]' if ':' in serve_host else serve_host
     foxglove = FoxgloveRelayServer(f'ws://{serve_host}:{serve_port}/rosbridge',
                                    install_space.ros2msg_schemas(), host, port,
-                                   queue_messages=args.foxglove_queue)
+                                   queue_messages=args.foxglove_queue,
+                                   assets=Assets.of_install(install_space))
     threading.Thread(target=foxglove.serve_forever, daemon=True).start()
     if not _is_loopback(host):
         print(f'colcon-wasm serve: warning: the Foxglove server listens on {host}: other '

@@ -46,6 +46,8 @@ import time
 from colcon_core.logging import colcon_logger
 from colcon_wasm.ros2msg import SchemaError
 from colcon_wasm.server import foxglove_wire as wire
+from colcon_wasm.server.foxglove_assets import AssetError
+from colcon_wasm.server.foxglove_assets import fetch_asset_response
 from colcon_wasm.server.foxglove_graph import ConnectionGraph
 from colcon_wasm.server.foxglove_link import RelayLink
 from colcon_wasm.server.foxglove_parameters import EVENTS_TOPIC
@@ -71,14 +73,18 @@ class FoxgloveRelayServer(ThreadingHTTPServer):
     daemon_threads = True
     allow_reuse_address = True
 
-    def __init__(self, relay_url, schemas, host, port, queue_messages=10):
+    def __init__(self, relay_url, schemas, host, port, queue_messages=10, assets=None):
         """
         Bind ``host:port`` (port 0 picks one) and connect to the relay at ``relay_url``.
+
+        :param assets: the install's share folders (foxglove_assets.Assets) that
+          ``fetchAsset`` serves ``package://`` files from; none: no ``assets``
 
         :raises ServeError: when the address is taken or cannot be bound
         """
         self.schemas = schemas
         self.queue_messages = queue_messages
+        self.assets = assets
         self.lock = threading.RLock()
         self.sessions = set()
         self.channels = {}      # topic -> channel dict (id, topic, encoding, schemaName, ...)
@@ -131,7 +137,8 @@ class FoxgloveRelayServer(ThreadingHTTPServer):
         """Return the capabilities a client connecting now is told."""
         return ['clientPublish', 'services', 'connectionGraph'] + (
             ['parameters', 'parametersSubscribe'] if self.parameters.available else []) + (
-            ['time'] if self.clock else [])
+            ['time'] if self.clock else []) + (
+            ['assets'] if self.assets and self.assets.available else [])
 
     # ------------------------------------------------------------ catalog
 
@@ -428,8 +435,8 @@ class FoxgloveSession:
                                     'subscribe, unsubscribe, advertise, unadvertise, '
                                     'getParameters, setParameters, subscribeParameterUpdates, '
                                     'unsubscribeParameterUpdates, subscribeConnectionGraph, '
-                                    'unsubscribeConnectionGraph and binary clientPublish and '
-                                    'serviceCallRequest)')
+                                    'unsubscribeConnectionGraph, fetchAsset and binary '
+                                    'clientPublish and serviceCallRequest)')
             return
         try:
             handler(msg)
@@ -529,6 +536,27 @@ class FoxgloveSession:
 
     def _op_unsubscribeConnectionGraph(self, msg):
         self.server.graph.unsubscribe(self)
+
+    def _op_fetchAsset(self, msg):
+        rid = msg.get('requestId')
+        if not isinstance(rid, int) or isinstance(rid, bool) or not 0 <= rid < 2 ** 32:
+            self.status(wire.ERROR, "fetchAsset needs an integer 'requestId' (the response "
+                                    'carries it)')
+            return
+        assets = self.server.assets
+
+        def fetch():
+            data, error = b'', None
+            if not assets or not assets.available:
+                error = (f"fetchAsset {msg.get('uri')}: this server has no install space to "
+                         "serve assets from (no 'assets' capability)")
+            else:
+                try:
+                    data = assets.fetch(msg.get('uri'))
+                except AssetError as e:
+                    error = str(e)
+            self.conn.send(fetch_asset_response(rid, error, data))
+        self.server.requests.submit(fetch)
 
     def forget_channels(self, ids):
         """Unadvertise channels that left the graph (their subscriptions end)."""
