@@ -19,7 +19,7 @@ import roslibpy
 
 
 def main(port):
-    """Subscribe, publish, call a service (int64), read the graph."""
+    """Subscribe, publish, call a service (int64), read the graph, get and set a parameter."""
     ros = roslibpy.Ros(host='127.0.0.1', port=port)
     ros.run(timeout=10)
     out = {'connected': ros.is_connected}
@@ -39,6 +39,12 @@ def main(port):
     out['topics'] = ros.get_topics()
     out['nodes'] = ros.get_nodes()
     out['type'] = ros.get_topic_type('/chatter')
+    # the parameters of the C++ talker (rosapi's parameter services; /talker:period_ms)
+    out['params'] = ros.get_params()
+    period = roslibpy.Param(ros, '/talker:period_ms')
+    out['period'] = period.get(timeout=10)
+    period.set(300, timeout=10)
+    out['period_set'] = period.get(timeout=10)
     ros.terminate()
     return out
 

@@ -149,7 +149,7 @@ def test_roslibjs_images_cbor_raw_and_cbor(server):
 
 
 def test_roslibpy(server):
-    """roslibpy: subscribe, publish into the C++ listener, call with int64, graph."""
+    """roslibpy: subscribe, publish into the C++ listener, call with int64, graph, a parameter."""
     result = subprocess.run(
         [sys.executable, str(Path(__file__).resolve().parent / 'rosbridge_roslibpy.py'),
          str(server.port)], capture_output=True, text=True, timeout=90)
@@ -160,6 +160,8 @@ def test_roslibpy(server):
     assert any(h.startswith('hello ') for h in r['heard']), r['heard']
     assert '/chatter' in r['topics'] and '/talker' in r['nodes']
     assert r['type'] == 'std_msgs/msg/String'
+    assert '/talker:period_ms' in r['params'], r['params']
+    assert isinstance(r['period'], int) and r['period_set'] == 300, r
     server.wait_for('HEARD from roslibpy 9', timeout=10)
 
 
