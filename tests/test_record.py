@@ -448,6 +448,38 @@ def test_loop_plays_the_bag_again(install, tmp_path):
     assert played[:rounds * len(sent)] == [d for _, d in sent] * rounds
 
 
+def test_start_offset_skips_the_start_of_the_bag_in_every_round(install, tmp_path):
+    # messages every 200 ms from 0 to 2 s; 1.1 s in, the first played is the one at 1.2 s
+    bag = tmp_path / 'bag'
+    sent = _write_rosbags_bag(bag, install, [0] + [200] * 10, extra_unknown=False)
+    replay = tmp_path / 'replay.mcap'
+    code, out, err = colcon_wasm('play', '--install-base', install, '--record', replay,
+                                 '--start-offset', '1.1', bag)
+    assert code == 0, out + err
+    played = [m for m in mcap_messages(replay) if m[0] == '/chatter']
+    assert [bytes(m[4]) for m in played] == [d for _, d in sent[6:]], err
+    took = (played[-1][1] - played[0][1]) / 1e6
+    assert 600 < took < 1400, took  # 0.8 s of bag, played from its offset at once
+    # with --loop, every round starts there, one mean gap after the last message
+    replay = tmp_path / 'loop.mcap'
+    code, out, err = colcon_wasm('play', '--install-base', install, '--record', replay,
+                                 '--loop', '--duration', '4', '--start-offset', '1.5', bag)
+    assert code == 0, out + err
+    played = [bytes(m[4]) for m in mcap_messages(replay)]
+    rounds = len(played) // 3
+    assert rounds >= 3 and played[:rounds * 3] == [d for _, d in sent[8:]] * rounds, played
+    # past the last message: nothing is played, and the launcher says why
+    code, out, err = colcon_wasm('play', '--install-base', install, '--start-offset', '5',
+                                 bag)
+    assert code == 0, out + err
+    assert "--start-offset 5 s is past the bag's last message (2.000 s in): nothing played" \
+        in err, err
+    code, out, err = colcon_wasm('play', '--install-base', install, '--start-offset', '-1',
+                                 bag)
+    assert code == 2, out + err
+    assert "argument --start-offset: '-1' is not a number of seconds (0 or more)" in err, err
+
+
 HUMBLE_OFFER = (  # as `ros2 bag record -s mcap` on Humble writes a DDS publisher's offer
     '- history: 3\n  depth: 0\n  reliability: 2\n  durability: 2\n  deadline:\n'
     '    sec: 9223372036\n    nsec: 854775807\n  lifespan:\n    sec: 9223372036\n'

@@ -16,6 +16,7 @@ a bag to play into the host (:mod:`colcon_wasm.record.bag_reader`), which
 keeps the timing and publishes (packages/wasm_js/src/bridges/record/).
 """
 
+import argparse
 import contextlib
 import json
 import os
@@ -39,6 +40,16 @@ def _positive(text):
     value = float(text)
     if value <= 0:
         raise ValueError(text)
+    return value
+
+
+def _seconds(text):
+    try:
+        value = float(text)
+    except ValueError:
+        value = -1.0
+    if not 0 <= value < float('inf'):
+        raise argparse.ArgumentTypeError(f"'{text}' is not a number of seconds (0 or more)")
     return value
 
 
@@ -73,6 +84,10 @@ def add_play_arguments(parser, *, option):
     parser.add_argument(
         '--loop', action='store_true', help='Play the bag again and again')
     parser.add_argument(
+        '--start-offset', type=_seconds, default=0.0, metavar='S',
+        help='Start S seconds into the bag, as ros2 bag play --start-offset (each loop '
+             'starts there too)')
+    parser.add_argument(
         '--topics', nargs='+', default=None, metavar='TOPIC',
         help='Play only these topics')
     parser.add_argument(
@@ -106,7 +121,7 @@ def bag_plan(args, *, play=None, stop_after_play=False):
             raise LaunchError(str(e)) from None
         plan['play'] = {'path': play, 'files': [str(f) for f in files], 'rate': args.rate,
                         'loop': args.loop, 'topics': args.topics, 'clock': args.clock,
-                        'stop_after': stop_after_play}
+                        'start_offset': args.start_offset, 'stop_after': stop_after_play}
     return plan
 
 
@@ -255,12 +270,14 @@ class BagSession:
         wanted_topics = set(spec['topics']) if spec['topics'] else None
         sent = 0
         announced = {}
+        # --start-offset: what comes before it in the bag is skipped, in every round
+        skip_ns = round(spec.get('start_offset', 0) * 1e9)
         try:
             loop = 0
             base = None
             span = 0
             while True:
-                last = None
+                first = last = seen = None
                 round_count = 0
                 for path in spec['files']:
                     def on_topic(topic):
@@ -269,6 +286,11 @@ class BagSession:
                         for topic, log_time, _, data in read_messages(path, on_topic):
                             if base is None:
                                 base = log_time
+                            seen = log_time
+                            if log_time - base < skip_ns:
+                                continue
+                            if first is None:
+                                first = log_time
                             last = log_time
                             offset = log_time - base + loop * span
                             stream.write(frames.encode_played(
@@ -279,11 +301,15 @@ class BagSession:
                         self.failed = True
                         self._say('ERROR', f'{e}; played {sent} messages')
                         return
+                if last is None and seen is not None and skip_ns:
+                    self._say('WARNING', f"--start-offset {spec['start_offset']:g} s is past "
+                                         f"the bag's last message ({(seen - base) / 1e9:.3f} s "
+                                         'in): nothing played')
                 if not spec['loop'] or last is None:
                     break
                 if loop == 0:
                     # the next round starts one mean gap after the last message
-                    length = last - base
+                    length = last - first
                     span = length + (length // (round_count - 1) if round_count > 1
                                      else 1000000000)
                 loop += 1
