@@ -512,6 +512,55 @@ def test_rosapi_type_services_of_the_relay():
         relay.close()
 
 
+def test_rosapi_parameters_through_a_client_that_serves_them(relay):
+    """get_param, has_param, set_param and get_param_names call the node's services."""
+    node, caller = Client(relay), Client(relay)
+    for c in (node, caller):
+        c.receive()
+    for service in ('get_parameters', 'set_parameters', 'list_parameters'):
+        node.send({'op': 'advertise_service', 'service': f'/n/{service}',
+                   'type': f'rcl_interfaces/srv/{service.title().replace("_", "")}'})
+    _rosapi(node, 'get_time', {}, 'sync')
+
+    def ask(service, args, rid, answer):
+        """Call rosapi; answer the node's call with ``answer``; return rosapi's values."""
+        caller.send({'op': 'call_service', 'id': rid, 'service': f'/rosapi/{service}',
+                     'args': args})
+        call = node.until(lambda m: m.get('op') == 'call_service')
+        assert call and call['id'].startswith('relay:'), call
+        node.send({'op': 'service_response', 'id': call['id'], 'service': call['service'],
+                   'result': True, 'values': answer})
+        reply = caller.until(lambda m: m.get('op') == 'service_response' and m.get('id') == rid)
+        assert reply and reply['result'], reply
+        return call, reply['values']
+
+    call, got = ask('get_param', {'name': '/n:greeting'}, 'g1',
+                    {'values': [{'type': 4, 'string_value': 'hi'}]})
+    assert (call['service'], call['args']) == ('/n/get_parameters', {'names': ['greeting']})
+    assert got == {'value': '"hi"', 'successful': True, 'reason': ''}
+    # rclcpp answers no values for a name it has not declared
+    _, got = ask('get_param', {'name': 'n:nope', 'default_value': '[1, 2]'}, 'g2',
+                 {'values': []})
+    assert got == {'value': '[1, 2]', 'successful': True, 'reason': ''}
+    _, got = ask('has_param', {'name': '/n:nope'}, 'h', {'values': []})
+    assert got == {'exists': False}
+    call, got = ask('set_param', {'name': '/n:rate', 'value': '2.5'}, 's1',
+                    {'results': [{'successful': False, 'reason': 'rate is read-only'}]})
+    assert call['args'] == {'parameters': [{'name': 'rate', 'value': {
+        'type': 3, 'double_value': 2.5}}]}
+    assert got == {'successful': False,
+                   'reason': 'setting /n:rate failed: rate is read-only'}
+    call, got = ask('get_param_names', {}, 'names',
+                    {'result': {'names': ['a', 5, 'b'], 'prefixes': []}})
+    assert call['service'] == '/n/list_parameters'
+    assert got == {'names': ['/n:a', '/n:b']}
+    # an answer that is no JSON object: a failure that says so, and the relay goes on
+    _, got = ask('get_param', {'name': '/n:greeting'}, 'g3', [1, 2])
+    assert got == {'value': 'null', 'successful': False,
+                   'reason': 'the answer is no JSON object: [1, 2]'}
+    assert _rosapi(caller, 'get_time', {}, 'after')['time']['sec'] > 0
+
+
 def test_foxglove_parameter_values_both_ways():
     """Serve --foxglove: Foxglove parameters to rcl ParameterValues (JSON) and back."""
     from colcon_wasm.server.foxglove_parameters import from_rcl

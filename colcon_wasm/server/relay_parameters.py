@@ -87,10 +87,13 @@ class _Answer:
 
     def send(self, out):
         """Take the relay's service_response: ``done(values, None)`` or ``done(None, why)``."""
-        if out.get('result'):
-            self.done(out.get('values') or {}, None)
+        values = out.get('values')
+        if not out.get('result'):
+            self.done(None, str(values))
+        elif not isinstance(values, dict):
+            self.done(None, f'the answer is no JSON object: {json.dumps(values)[:60]}')
         else:
-            self.done(None, str(out.get('values')))
+            self.done(values, None)
 
     def status(self, level, text, rid=None):
         """Say nothing: a failure's text comes with its service_response."""
@@ -139,7 +142,7 @@ class RosapiParameters:
             if values is None:
                 done(False, None, error)
                 return
-            found, value = plain_value((values.get('values') or [None])[0])
+            found, value = plain_value(_first(values, 'values'))
             done(found, value, None if found else f'{node} has no parameter {param!r}')
         self._ask(node, 'get_parameters', {'names': [param]}, got)
 
@@ -176,7 +179,8 @@ class RosapiParameters:
 
     def _set(self, node, param, rcl, answer, doing):
         def done(values, error):
-            result = ((values or {}).get('results') or [{}])[0]
+            result = _first(values, 'results')
+            result = result if isinstance(result, dict) else {}
             if values is None:
                 answer(_failed('set_param', f'cannot set {node}:{param}: {error}'))
             elif not result.get('successful'):
@@ -201,7 +205,9 @@ class RosapiParameters:
 
         def one(node):
             def done(values, error):
-                names = ((values or {}).get('result') or {}).get('names') or []
+                result = (values or {}).get('result')
+                names = result.get('names') if isinstance(result, dict) else None
+                names = names if isinstance(names, list) else []
                 listed[node] = [f'{node}:{n}' for n in names if isinstance(n, str)]
                 if len(listed) == len(nodes):
                     answer({'names': [name for each in nodes for name in listed[each]]})
@@ -211,6 +217,12 @@ class RosapiParameters:
             answer({'names': []})
         for node in nodes:
             self._ask(node, 'list_parameters', {'prefixes': [], 'depth': 0}, one(node))
+
+
+def _first(values, key):
+    """Return the first item of the list ``values[key]``, or None."""
+    items = values.get(key) if isinstance(values, dict) else None
+    return items[0] if isinstance(items, list) and items else None
 
 
 def _failed(service, reason, args=None):
