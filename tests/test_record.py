@@ -480,6 +480,47 @@ def test_start_offset_skips_the_start_of_the_bag_in_every_round(install, tmp_pat
     assert "argument --start-offset: '-1' is not a number of seconds (0 or more)" in err, err
 
 
+def test_qos_override_file_sets_the_players_publishers(install, tmp_path):
+    # the bag's /chatter was offered reliable, transient local, depth 5 (_write_rosbags_bag)
+    bag = tmp_path / 'bag'
+    sent = _write_rosbags_bag(bag, install, [0, 100, 100], extra_unknown=False)
+    overrides = tmp_path / 'qos.yaml'
+    overrides.write_text('/chatter:\n  reliability: best_effort\n  durability: volatile\n'
+                         '  history: keep_last\n  depth: 3\n'
+                         '  lifespan: {sec: 2, nsec: 500000000}\n', encoding='utf-8')
+    replay = tmp_path / 'replay.mcap'
+    code, out, err = colcon_wasm('play', '--install-base', install, '--record', replay,
+                                 '--qos-profile-overrides-path', overrides, bag)
+    assert code == 0, out + err
+    assert "topic '/chatter' plays with the QoS of the override file: history keep_last, " \
+        'depth 3, reliability best_effort, durability volatile, lifespanMs 2500' in err, err
+    played = [m for m in mcap_messages(replay) if m[0] == '/chatter']
+    assert [bytes(m[4]) for m in played] == [d for _, d in sent]
+    # the recorder saw the player's publisher offer the override's QoS
+    with open(replay, 'rb') as f:
+        channels = mcap_reader.make_reader(f).get_summary().channels.values()
+    import yaml
+    offer = yaml.safe_load(next(c for c in channels if c.topic == '/chatter')
+                           .metadata['offered_qos_profiles'])[0]
+    assert (offer['reliability'], offer['durability'], offer['depth']) == (2, 2, 3), offer
+    assert offer['lifespan'] == {'sec': 2, 'nsec': 500000000}, offer
+    # bad files: named with the topic and key, and nothing runs
+    for text, said in [
+            ('/chatter: {reliability: sometimes}\n',
+             "topic '/chatter': reliability 'sometimes' is none of reliable, best_effort, "
+             'system_default'),
+            ('/chatter: {speed: 3}\n', "topic '/chatter': unknown key 'speed'"),
+            ('- /chatter\n', 'must map topic names to profiles'),
+            ('/chatter: {depth: -1}\n', "topic '/chatter': depth -1 is not a whole number")]:
+        overrides.write_text(text, encoding='utf-8')
+        code, out, err = colcon_wasm('play', '--install-base', install,
+                                     '--qos-profile-overrides-path', overrides, bag)
+        assert code == 1 and said in err and 'played' not in err, err
+    code, out, err = colcon_wasm('play', '--install-base', install,
+                                 '--qos-profile-overrides-path', tmp_path / 'none.yaml', bag)
+    assert code == 1 and 'cannot read the QoS override file' in err, err
+
+
 HUMBLE_OFFER = (  # as `ros2 bag record -s mcap` on Humble writes a DDS publisher's offer
     '- history: 3\n  depth: 0\n  reliability: 2\n  durability: 2\n  deadline:\n'
     '    sec: 9223372036\n    nsec: 854775807\n  lifespan:\n    sec: 9223372036\n'

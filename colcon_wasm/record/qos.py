@@ -141,3 +141,83 @@ def player_qos(text):
     if len(lifespans) == 1 and lifespans != {0}:
         qos['lifespanMs'] = lifespans.pop()
     return qos
+
+
+class QosOverrideError(ValueError):
+    """A QoS override file that cannot be used: the text names the file, topic and key."""
+
+
+_OVERRIDE_POLICIES = {
+    'history': ('keep_last', 'keep_all', 'system_default'),
+    'reliability': ('reliable', 'best_effort', 'system_default'),
+    'durability': ('volatile', 'transient_local', 'system_default'),
+    'liveliness': ('automatic', 'manual_by_topic', 'system_default'),
+}
+_OVERRIDE_DURATIONS = {'deadline': 'deadlineMs', 'lifespan': 'lifespanMs',
+                       'liveliness_lease_duration': 'leaseMs'}
+_OVERRIDE_TABLES = {'history': HISTORY, 'reliability': RELIABILITY, 'durability': DURABILITY,
+                    'liveliness': LIVELINESS}
+
+
+def read_overrides(path):
+    """
+    Read a QoS override file, as ``ros2 bag play --qos-profile-overrides-path`` does.
+
+    The file maps topic names to profiles: ``history`` (``keep_last``,
+    ``keep_all``), ``depth``, ``reliability`` (``reliable``,
+    ``best_effort``), ``durability`` (``volatile``, ``transient_local``),
+    ``deadline``, ``lifespan``, ``liveliness_lease_duration`` (``{sec,
+    nsec}``), ``liveliness`` (``automatic``, ``manual_by_topic``) and
+    ``avoid_ros_namespace_conventions``; policies as names or as rmw's enum
+    numbers. What a profile leaves out is rclcpp's default (keep_last 10,
+    reliable, volatile).
+
+    :returns: ``{topic: profile}``, profiles in the JS form (qos.mjs)
+    :raises QosOverrideError: naming the file, the topic and the key
+    """
+    try:
+        with open(path, encoding='utf-8') as f:
+            data = yaml.safe_load(f)
+    except OSError as e:
+        raise QosOverrideError(f"cannot read the QoS override file '{path}': "
+                               f'{e.strerror or e}') from None
+    except yaml.YAMLError as e:
+        raise QosOverrideError(f"the QoS override file '{path}' is not YAML: {e}") from None
+    if not isinstance(data, dict):
+        raise QosOverrideError(f"the QoS override file '{path}' must map topic names to "
+                               'profiles (e.g. "/chatter: {reliability: best_effort}")')
+    overrides = {}
+    for topic, item in data.items():
+        where = f"QoS override file '{path}', topic {topic!r}"
+        if not isinstance(topic, str) or not isinstance(item, dict):
+            raise QosOverrideError(f'{where}: expected a topic name and a mapping of policies')
+        profile = {'history': 'keep_last', 'depth': DEFAULT_DEPTH, 'reliability': 'reliable',
+                   'durability': 'volatile'}
+        for key, value in item.items():
+            if key in _OVERRIDE_POLICIES:
+                name = _policy(value, _OVERRIDE_TABLES[key])
+                if name not in _OVERRIDE_POLICIES[key]:
+                    raise QosOverrideError(
+                        f'{where}: {key} {value!r} is none of '
+                        f"{', '.join(_OVERRIDE_POLICIES[key])}")
+                if name != 'system_default':
+                    profile[key] = name
+            elif key == 'depth':
+                if not isinstance(value, int) or isinstance(value, bool) or value < 0:
+                    raise QosOverrideError(f'{where}: depth {value!r} is not a whole number')
+                profile['depth'] = value or DEFAULT_DEPTH
+            elif key in _OVERRIDE_DURATIONS:
+                if not isinstance(value, dict) or set(value) - {'sec', 'nsec'} or not all(
+                        isinstance(v, int) and v >= 0 for v in value.values()):
+                    raise QosOverrideError(f'{where}: {key} must be {{sec: S, nsec: N}}, '
+                                           f'got {value!r}')
+                ms = _ms(value)
+                if ms:
+                    profile[_OVERRIDE_DURATIONS[key]] = ms
+            elif key != 'avoid_ros_namespace_conventions':
+                raise QosOverrideError(
+                    f"{where}: unknown key '{key}' (keys: history, depth, reliability, "
+                    'durability, deadline, lifespan, liveliness, liveliness_lease_duration, '
+                    'avoid_ros_namespace_conventions)')
+        overrides[topic if topic.startswith('/') else f'/{topic}'] = profile
+    return overrides

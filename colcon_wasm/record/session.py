@@ -31,6 +31,8 @@ from colcon_wasm.record.bag_reader import unplayable
 from colcon_wasm.record.bag_writer import BagWriter
 from colcon_wasm.record.mcap_file import COMPRESSIONS
 from colcon_wasm.record.qos import player_qos
+from colcon_wasm.record.qos import QosOverrideError
+from colcon_wasm.record.qos import read_overrides
 from colcon_wasm.ros2msg import SchemaError
 
 DEFAULT_CLOCK_HZ = 40.0
@@ -84,6 +86,11 @@ def add_play_arguments(parser, *, option):
     parser.add_argument(
         '--loop', action='store_true', help='Play the bag again and again')
     parser.add_argument(
+        '--qos-profile-overrides-path', metavar='FILE',
+        help="A YAML file of topics' QoS for the player's publishers, as ros2 bag play "
+             '(e.g. "/chatter: {reliability: best_effort, depth: 5}"); other topics get '
+             'the QoS their recorded publishers offered')
+    parser.add_argument(
         '--start-offset', type=_seconds, default=0.0, metavar='S',
         help='Start S seconds into the bag, as ros2 bag play --start-offset (each loop '
              'starts there too)')
@@ -119,9 +126,16 @@ def bag_plan(args, *, play=None, stop_after_play=False):
             files = bag_files(play)
         except BagError as e:
             raise LaunchError(str(e)) from None
+        overrides = {}
+        if args.qos_profile_overrides_path:
+            try:
+                overrides = read_overrides(args.qos_profile_overrides_path)
+            except QosOverrideError as e:
+                raise LaunchError(f'--qos-profile-overrides-path: {e}') from None
         plan['play'] = {'path': play, 'files': [str(f) for f in files], 'rate': args.rate,
                         'loop': args.loop, 'topics': args.topics, 'clock': args.clock,
-                        'start_offset': args.start_offset, 'stop_after': stop_after_play}
+                        'start_offset': args.start_offset, 'qos_overrides': overrides,
+                        'stop_after': stop_after_play}
     return plan
 
 
@@ -281,7 +295,8 @@ class BagSession:
                 round_count = 0
                 for path in spec['files']:
                     def on_topic(topic):
-                        return self._announce(topic, announced, schemas, wanted_topics, stream)
+                        return self._announce(topic, announced, schemas, wanted_topics, stream,
+                                              spec.get('qos_overrides') or {})
                     try:
                         for topic, log_time, _, data in read_messages(path, on_topic):
                             if base is None:
@@ -320,7 +335,7 @@ class BagSession:
                 stream.write(frames.encode_json(frames.END, {'messages': sent}))
                 stream.close()
 
-    def _announce(self, topic, announced, schemas, wanted_topics, stream):
+    def _announce(self, topic, announced, schemas, wanted_topics, stream, overrides):
         """Send a topic's channel to the host, or say why it is skipped."""
         if wanted_topics is not None and topic.name not in wanted_topics:
             return False
@@ -334,9 +349,14 @@ class BagSession:
             return False
         channel = len(announced) + 1
         announced[topic.name] = (channel, topic.type)
+        qos = overrides.get(topic.name)
+        if qos is not None:
+            self._say('INFO', f"topic '{topic.name}' plays with the QoS of the override file: "
+                              + ', '.join(f'{k} {v:g}' if isinstance(v, float) else f'{k} {v}'
+                                          for k, v in qos.items()))
         stream.write(frames.encode_json(frames.CHANNEL, {
             'id': channel, 'topic': topic.name, 'type': schemas.resolve(topic.type),
-            'qos': player_qos(topic.qos)}))
+            'qos': qos or player_qos(topic.qos)}))
         return True
 
 
