@@ -521,6 +521,24 @@ def test_qos_override_file_sets_the_players_publishers(install, tmp_path):
     assert code == 1 and 'cannot read the QoS override file' in err, err
 
 
+def test_remap_plays_a_topic_on_another_name(install, tmp_path):
+    bag = tmp_path / 'bag'
+    sent = _write_rosbags_bag(bag, install, [0, 100, 100], extra_unknown=False)
+    replay = tmp_path / 'replay.mcap'
+    code, out, err = colcon_wasm('play', '--install-base', install, '--record', replay, bag,
+                                 '--remap', 'chatter:=/news')
+    assert code == 0, out + err
+    assert "topic '/chatter' plays on '/news' (--remap)" in err, err
+    played = [(m[0], bytes(m[4])) for m in mcap_messages(replay)]
+    assert played == [('/news', d) for _, d in sent], played
+    for args, said in [
+            (['play', bag, '--remap', '/chatter'], "--remap '/chatter' is not FROM:=TO"),
+            (['launch', '--remap', 'a:=b', 'demo_nodes/talker'],
+             '--remap renames topics of the bag --play plays: add --play BAG')]:
+        code, out, err = colcon_wasm(args[0], '--install-base', install, *args[1:])
+        assert code == 1 and said in err, err
+
+
 HUMBLE_OFFER = (  # as `ros2 bag record -s mcap` on Humble writes a DDS publisher's offer
     '- history: 3\n  depth: 0\n  reliability: 2\n  durability: 2\n  deadline:\n'
     '    sec: 9223372036\n    nsec: 854775807\n  lifespan:\n    sec: 9223372036\n'

@@ -20,6 +20,7 @@ import argparse
 import contextlib
 import json
 import os
+import re
 import threading
 
 from colcon_wasm.launch.errors import LaunchError
@@ -43,6 +44,9 @@ def _positive(text):
     if value <= 0:
         raise ValueError(text)
     return value
+
+
+_TOPIC = re.compile(r'^(/[A-Za-z_][A-Za-z0-9_]*)+$')
 
 
 def _seconds(text):
@@ -91,6 +95,10 @@ def add_play_arguments(parser, *, option):
              '(e.g. "/chatter: {reliability: best_effort, depth: 5}"); other topics get '
              'the QoS their recorded publishers offered')
     parser.add_argument(
+        '--remap', '-m', action='append', default=[], metavar='FROM:=TO',
+        help='Play topic FROM on topic TO, as ros2 bag play --remap (one rule per --remap, '
+             'repeat it for more)')
+    parser.add_argument(
         '--start-offset', type=_seconds, default=0.0, metavar='S',
         help='Start S seconds into the bag, as ros2 bag play --start-offset (each loop '
              'starts there too)')
@@ -101,6 +109,23 @@ def add_play_arguments(parser, *, option):
         '--clock', nargs='?', type=_positive, const=DEFAULT_CLOCK_HZ, default=None, metavar='HZ',
         help='Publish /clock (rosgraph_msgs/msg/Clock) with the bag time at HZ (default '
              f'{DEFAULT_CLOCK_HZ}) for use_sim_time nodes')
+
+
+def _remaps(rules):
+    """
+    Read ``--remap FROM:=TO`` rules into ``{from: to}`` (names made absolute).
+
+    :raises LaunchError: naming a rule that is no FROM:=TO of two topic names
+    """
+    remaps = {}
+    for rule in rules:
+        source, sep, target = rule.partition(':=')
+        names = [n if n.startswith('/') else f'/{n}' for n in (source, target)]
+        if not sep or not all(_TOPIC.match(n) for n in names):
+            raise LaunchError(f"--remap '{rule}' is not FROM:=TO of two topic names "
+                              '(e.g. /chatter:=/news)')
+        remaps[names[0]] = names[1]
+    return remaps
 
 
 def bag_plan(args, *, play=None, stop_after_play=False):
@@ -121,6 +146,8 @@ def bag_plan(args, *, play=None, stop_after_play=False):
     elif getattr(args, 'record_topic', None):
         raise LaunchError('--record-topic selects what --record records: add --record FILE.mcap')
     play = play or getattr(args, 'play', None)
+    if getattr(args, 'remap', None) and not play:
+        raise LaunchError('--remap renames topics of the bag --play plays: add --play BAG')
     if play:
         try:
             files = bag_files(play)
@@ -132,10 +159,11 @@ def bag_plan(args, *, play=None, stop_after_play=False):
                 overrides = read_overrides(args.qos_profile_overrides_path)
             except QosOverrideError as e:
                 raise LaunchError(f'--qos-profile-overrides-path: {e}') from None
+        remaps = _remaps(getattr(args, 'remap', None) or [])
         plan['play'] = {'path': play, 'files': [str(f) for f in files], 'rate': args.rate,
                         'loop': args.loop, 'topics': args.topics, 'clock': args.clock,
                         'start_offset': args.start_offset, 'qos_overrides': overrides,
-                        'stop_after': stop_after_play}
+                        'remaps': remaps, 'stop_after': stop_after_play}
     return plan
 
 
@@ -296,7 +324,8 @@ class BagSession:
                 for path in spec['files']:
                     def on_topic(topic):
                         return self._announce(topic, announced, schemas, wanted_topics, stream,
-                                              spec.get('qos_overrides') or {})
+                                              spec.get('qos_overrides') or {},
+                                              spec.get('remaps') or {})
                     try:
                         for topic, log_time, _, data in read_messages(path, on_topic):
                             if base is None:
@@ -335,7 +364,7 @@ class BagSession:
                 stream.write(frames.encode_json(frames.END, {'messages': sent}))
                 stream.close()
 
-    def _announce(self, topic, announced, schemas, wanted_topics, stream, overrides):
+    def _announce(self, topic, announced, schemas, wanted_topics, stream, overrides, remaps):
         """Send a topic's channel to the host, or say why it is skipped."""
         if wanted_topics is not None and topic.name not in wanted_topics:
             return False
@@ -354,8 +383,11 @@ class BagSession:
             self._say('INFO', f"topic '{topic.name}' plays with the QoS of the override file: "
                               + ', '.join(f'{k} {v:g}' if isinstance(v, float) else f'{k} {v}'
                                           for k, v in qos.items()))
+        name = remaps.get(topic.name, topic.name)
+        if name != topic.name:
+            self._say('INFO', f"topic '{topic.name}' plays on '{name}' (--remap)")
         stream.write(frames.encode_json(frames.CHANNEL, {
-            'id': channel, 'topic': topic.name, 'type': schemas.resolve(topic.type),
+            'id': channel, 'topic': name, 'type': schemas.resolve(topic.type),
             'qos': qos or player_qos(topic.qos)}))
         return True
 
