@@ -370,6 +370,28 @@ def test_record_options_are_checked(install, tmp_path):
     code, out, err = colcon_wasm('launch', '--install-base', install, '--record',
                                  tmp_path / 'no' / 'such' / 'x.mcap', 'demo_nodes/talker')
     assert code == 1 and 'does not exist' in err, err
+    code, out, err = colcon_wasm('launch', '--install-base', install, '--record-regex', 'a',
+                                 'demo_nodes/talker')
+    assert code == 1 and '--record-regex selects what --record records' in err, err
+    code, out, err = colcon_wasm('launch', '--install-base', install, '--record',
+                                 tmp_path / 'x.mcap', '--record-exclude', '(camera',
+                                 'demo_nodes/talker')
+    assert code == 1 and "--record-exclude '(camera' is not a regular expression" in err, err
+
+
+def test_record_regex_and_exclude_choose_the_topics(install, tmp_path):
+    # the talker publishes /chatter, the camera /camera/image and /camera/camera_info
+    topics = {}
+    for name, options in [('regex', ['--record-regex', '^/cam.*/image$',
+                                     '--record-topic', '/chatter']),
+                          ('exclude', ['--record-exclude', 'camera|rosout|parameter'])]:
+        path = tmp_path / f'{name}.mcap'
+        code, out, err = colcon_wasm('launch', '--install-base', install, '--duration', '3',
+                                     '--record', path, *options, 'demo_nodes/talker',
+                                     'demo_nodes/camera')
+        assert code == 0, out + err
+        topics[name] = {m[0] for m in mcap_messages(path)}
+    assert topics == {'regex': {'/camera/image', '/chatter'}, 'exclude': {'/chatter'}}, topics
 
 
 @pytest.mark.parametrize('compression', ['zstd', 'lz4'])

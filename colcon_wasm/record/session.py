@@ -68,6 +68,14 @@ def add_record_arguments(parser):
         '--record-topic', action='append', default=[], metavar='TOPIC',
         help='Record only this topic (repeatable; default: every topic)')
     parser.add_argument(
+        '--record-regex', metavar='REGEX',
+        help='Record the topics whose name this regular expression finds (ECMAScript, '
+             'searched as ros2 bag record -e does), besides any --record-topic')
+    parser.add_argument(
+        '--record-exclude', metavar='REGEX',
+        help='Record no topic whose name this regular expression finds (as ros2 bag '
+             'record -x)')
+    parser.add_argument(
         '--record-compression', choices=sorted(COMPRESSIONS), default='none',
         help='Compression of the chunks (default: %(default)s, as ros2 bag record; zstd: '
              'smaller files for more CPU)')
@@ -128,6 +136,23 @@ def _remaps(rules):
     return remaps
 
 
+def _pattern(args, option):
+    """
+    Check a regular expression option (Python's re reads what ECMAScript does, mostly).
+
+    :raises LaunchError: naming the option and where the expression is wrong
+    """
+    pattern = getattr(args, option, None)
+    if pattern is None:
+        return None
+    try:
+        re.compile(pattern)
+    except re.error as e:
+        raise LaunchError(f"--{option.replace('_', '-')} '{pattern}' is not a regular "
+                          f'expression: {e}') from None
+    return pattern
+
+
 def bag_plan(args, *, play=None, stop_after_play=False):
     """
     Check the record and replay options.
@@ -142,9 +167,14 @@ def bag_plan(args, *, play=None, stop_after_play=False):
         if not os.path.isdir(directory):
             raise LaunchError(f"--record '{args.record}': the folder '{directory}' does not exist")
         plan['record'] = {'path': args.record, 'topics': list(args.record_topic) or None,
+                          'regex': _pattern(args, 'record_regex'),
+                          'exclude': _pattern(args, 'record_exclude'),
                           'compression': args.record_compression}
-    elif getattr(args, 'record_topic', None):
-        raise LaunchError('--record-topic selects what --record records: add --record FILE.mcap')
+    else:
+        for option in ('record_topic', 'record_regex', 'record_exclude'):
+            if getattr(args, option, None):
+                raise LaunchError(f"--{option.replace('_', '-')} selects what --record "
+                                  'records: add --record FILE.mcap')
     play = play or getattr(args, 'play', None)
     if getattr(args, 'remap', None) and not play:
         raise LaunchError('--remap renames topics of the bag --play plays: add --play BAG')
@@ -214,7 +244,8 @@ class BagSession:
             self.fds += [write_end, answers_read]
             self._close_after_start += [write_end, answers_read]
             self.host_plan['record'] = {'fd': write_end, 'replies': answers_read,
-                                        'topics': spec['topics'], 'file': None}
+                                        'topics': spec['topics'], 'regex': spec.get('regex'),
+                                        'exclude': spec.get('exclude'), 'file': None}
             if spec['compression'] == 'none':
                 self.fds.append(writer.fileno())
                 self.host_plan['record']['file'] = {'fd': writer.fileno(),

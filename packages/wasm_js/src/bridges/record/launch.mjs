@@ -40,7 +40,8 @@ export async function startBags(plan, runtime, { out, err }) {
     // recorder reports, rather than the signal ending the host and its nodes
     if (plan.record.file) process.on('SIGXFSZ', () => {});
     recorder = new Recorder({
-      runtime, sink, replies, file: plan.record.file || null, topics: plan.record.topics, log,
+      runtime, sink, replies, file: plan.record.file || null, topics: plan.record.topics,
+      regex: plan.record.regex || null, exclude: plan.record.exclude || null, log,
     });
     await recorder.start();
   }

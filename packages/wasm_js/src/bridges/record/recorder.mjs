@@ -37,6 +37,16 @@ const CHUNK_BYTES = 1024 * 1024;
 /** or this long after its first message (a crash loses at most that much). */
 const FLUSH_MS = 1000;
 
+/** A regular expression option, searched in topic names; null for none. */
+function compile(pattern, option) {
+  if (pattern === null || pattern === undefined) return null;
+  try {
+    return new RegExp(pattern);
+  } catch (e) {
+    throw new Error(`${option} '${pattern}' is not a regular expression: ${e.message}`);
+  }
+}
+
 export class Recorder {
   /**
    * @param {object} options
@@ -45,14 +55,19 @@ export class Recorder {
    * @param {import('node:stream').Readable} options.replies the launcher's answers
    * @param {?{fd: number, offset: number}} options.file the bag, when the worker writes it
    * @param {?string[]} options.topics only these topics (null: all)
+   * @param {?string} [options.regex] also (or, without topics, only) the topics this finds
+   * @param {?string} [options.exclude] none of the topics this finds
    * @param {function(string, string): void} options.log (level, text)
+   * @throws {Error} naming the option whose regular expression is not one
    */
-  constructor({ runtime, sink, replies, file, topics, log }) {
+  constructor({ runtime, sink, replies, file, topics, regex = null, exclude = null, log }) {
     this.runtime = runtime;
     this.sink = sink;
     this.replies = replies;
     this.file = file;
     this.topics = topics && topics.length ? new Set(topics) : null;
+    this.regex = compile(regex, '--record-regex');
+    this.exclude = compile(exclude, '--record-exclude');
     this.log = log;
     this.channels = new Map();
     /** topics whose subscription is in place */
@@ -119,7 +134,7 @@ export class Recorder {
     if (this.closed) return;
     for (const t of this.runtime.graph().topics) {
       if (t.domain !== 0 || this.channels.has(t.name) || t.publishers.length === 0) continue;
-      if (this.topics && !this.topics.has(t.name)) continue;
+      if (!this.wants(t.name)) continue;
       const type = t.types[0];
       if (t.types.length > 1) this.log('warning', `topic '${t.name}' has several types (${t.types.join(', ')}): recording ${type}`);
       const id = this.channels.size + 1;
@@ -146,9 +161,15 @@ export class Recorder {
     }
   }
 
-  /** Does this recorder record this topic (once it has a publisher)? */
+  /**
+   * Does this recorder record this topic (once it has a publisher)? As ros2 bag record:
+   * the listed topics and those the regex finds (every topic without either), less those
+   * the exclude regex finds.
+   */
   wants(topic) {
-    return !this.topics || this.topics.has(topic);
+    const chosen = (!this.topics && !this.regex) || (this.topics && this.topics.has(topic))
+      || (this.regex && this.regex.test(topic));
+    return Boolean(chosen) && !(this.exclude && this.exclude.test(topic));
   }
 
   /** Write a batch of chunks of the recording worker into the bag; past the bound they are dropped and counted. */
