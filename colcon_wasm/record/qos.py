@@ -14,6 +14,8 @@ milliseconds, 0: none).
 
 import yaml
 
+from colcon_wasm.error import ColconWasmError
+
 HISTORY = {'system_default': 0, 'keep_last': 1, 'keep_all': 2, 'unknown': 3}
 RELIABILITY = {'system_default': 0, 'reliable': 1, 'best_effort': 2, 'unknown': 3,
                'best_available': 4}
@@ -143,7 +145,7 @@ def player_qos(text):
     return qos
 
 
-class QosOverrideError(ValueError):
+class QosOverrideError(ColconWasmError):
     """A QoS override file that cannot be used: the text names the file, topic and key."""
 
 
