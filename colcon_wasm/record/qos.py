@@ -12,9 +12,8 @@ a profile is the JS object of packages/wasm_js/src/qos.mjs (durations in
 milliseconds, 0: none).
 """
 
-import yaml
-
 from colcon_wasm.error import ColconWasmError
+import yaml
 
 HISTORY = {'system_default': 0, 'keep_last': 1, 'keep_all': 2, 'unknown': 3}
 RELIABILITY = {'system_default': 0, 'reliable': 1, 'best_effort': 2, 'unknown': 3,
