@@ -50,8 +50,8 @@ def test_a_foxglove_client_sees_hears_and_drives_the_pages(tmp_path):
     assert result['ok'], explain_page(result)
     assert r['protocol'] == 'foxglove.websocket.v1' and r['sdkProtocol'] == 'foxglove.sdk.v1'
     # the demo's install has no rcl_interfaces: no parameters (test_foxglove_rclcpp.py has them)
-    assert set(r['info']['capabilities']) == {'clientPublish', 'services', 'connectionGraph'}, \
-        r['info']
+    assert set(r['info']['capabilities']) == {'clientPublish', 'services', 'connectionGraph',
+                                              'assets'}, r['info']
     assert r['info']['supportedEncodings'] == ['json'], r['info']
     channel = r['channel']
     assert (channel['encoding'], channel['schemaEncoding'], channel['schemaName']) == \
