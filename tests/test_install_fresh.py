@@ -71,6 +71,8 @@ NOT_RUN = {
         'launch --play --clock: tests/test_record.py',
     'colcon-wasm serve --foxglove':
         'a Foxglove server on the served pages: tests/test_foxglove_serve.py',
+    'colcon-wasm bag-info ':
+        'what a bag holds: tests/test_record.py (a recording, a rosbags bag, a cut file)',
     'colcon-wasm record ':
         'recording a rosbridge server (serve --rosbridge): tests/test_record_remote.py',
     'colcon-wasm launch demo_nodes/talker --zenoh':

@@ -292,6 +292,45 @@ def test_a_truncated_bag_plays_what_comes_before_and_names_the_record(install, r
     assert len(mcap_messages(replay)) == _count_in(recorded['path'], chunks[:1]), err
 
 
+def _bag_info(path):
+    code, out, err = colcon_wasm('bag-info', path)
+    assert code == 0, out + err
+    counts = dict(re.findall(r'Topic: (\S+) \| Type: \S+ \| Count: (\d+) \| '
+                             r'Serialization Format: cdr', out))
+    return out, {topic: int(n) for topic, n in counts.items()}
+
+
+def test_bag_info_prints_what_ros2_bag_info_prints(install, recorded, tmp_path):
+    messages = mcap_messages(recorded['path'])
+    times = [m[1] for m in messages]
+    want = {}
+    for m in messages:
+        want[m[0]] = want.get(m[0], 0) + 1
+    out, counts = _bag_info(recorded['path'])
+    assert counts == want, out
+    assert f'\nMessages:          {len(messages)}\n' in out, out
+    assert f'\nDuration:          {(max(times) - min(times)) / 1e9:.3f}s\n' in out, out
+    start = min(times) // 1000000
+    assert f'({start // 1000}.{start % 1000:03d})' in out.split('\nStart:')[1].split('\n')[0]
+    assert out.startswith('Files:             demo.mcap\nBag size:') and \
+        'Storage id:        mcap' in out, out
+    # a rosbag2 directory written by rosbags
+    bag = tmp_path / 'bag'
+    sent = _write_rosbags_bag(bag, install, [0, 100, 100])
+    out, counts = _bag_info(bag)
+    assert counts == {'/chatter': len(sent), '/odd': len(sent)}, out
+    assert 'Type: robot_msgs/msg/Odd' in out and 'Duration:          0.200s' in out, out
+    # a file cut off in its second chunk: what comes before, counted by reading
+    chunks = _summary_chunks(recorded['path'])
+    cut = tmp_path / 'cut.mcap'
+    cut.write_bytes(Path(recorded['path']).read_bytes()[:chunks[1].chunk_start_offset + 10])
+    out, counts = _bag_info(cut)
+    assert sum(counts.values()) == _count_in(recorded['path'], chunks[:1]), out
+    assert f'the Chunk record at byte offset {chunks[1].chunk_start_offset} is cut off' in out
+    code, out, err = colcon_wasm('bag-info', tmp_path / 'nothing.mcap')
+    assert code == 1 and "colcon-wasm bag-info: no bag at '" in err, err
+
+
 def _summary_chunks(path):
     with open(path, 'rb') as f:
         return mcap_reader.make_reader(f).get_summary().chunk_indexes
