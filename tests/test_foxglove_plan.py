@@ -52,7 +52,7 @@ class _Space:
     def ros2msg_schemas(self):
         return Ros2MsgSchemas(self._messages)
 
-    def packages(self):
+    def share_folders(self):
         return {}
 
 

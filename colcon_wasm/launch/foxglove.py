@@ -109,8 +109,7 @@ def schema_file(description, install_space):
         if description.get('foxglove'):
             # fetchAsset serves package:// files from these (as the ament index resolves them)
             description['foxglove']['shares'] = {
-                name: str(package.share) for name, package in install_space.packages().items()
-                if package.share.is_dir()}
+                name: str(share) for name, share in install_space.share_folders().items()}
         yield path
     finally:
         with contextlib.suppress(OSError):

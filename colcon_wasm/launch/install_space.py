@@ -191,6 +191,15 @@ class InstallSpace:
             found.update(_scan_base(base))
         return dict(sorted(found.items()))
 
+    def share_folders(self):
+        """
+        Return each package's share folder, as the ament index resolves ``package://``.
+
+        :returns: ``{name: Path}``, packages without a share folder left out
+        """
+        return {name: package.share for name, package in self.packages().items()
+                if package.share.is_dir()}
+
     def package(self, name):
         """Return a Package by name or raise an error listing what is there."""
         packages = self.packages()

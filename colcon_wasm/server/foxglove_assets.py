@@ -51,8 +51,7 @@ class Assets:
     @classmethod
     def of_install(cls, install_space):
         """Serve the share folder of every package of an install space."""
-        return cls({name: package.share for name, package in install_space.packages().items()
-                    if package.share.is_dir()})
+        return cls(install_space.share_folders())
 
     @property
     def available(self):
