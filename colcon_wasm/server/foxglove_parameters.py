@@ -46,10 +46,11 @@ PARAMETER_TIMEOUT = 5.0
 # rcl_interfaces/msg/ParameterType
 (NOT_SET, BOOL, INTEGER, DOUBLE, STRING, BYTE_ARRAY, BOOL_ARRAY, INTEGER_ARRAY, DOUBLE_ARRAY,
  STRING_ARRAY) = range(10)
-_FIELDS = {BOOL: 'bool_value', INTEGER: 'integer_value', DOUBLE: 'double_value',
-           STRING: 'string_value', BYTE_ARRAY: 'byte_array_value',
-           BOOL_ARRAY: 'bool_array_value', INTEGER_ARRAY: 'integer_array_value',
-           DOUBLE_ARRAY: 'double_array_value', STRING_ARRAY: 'string_array_value'}
+"""The field of rcl_interfaces/msg/ParameterValue that holds each type's value."""
+VALUE_FIELDS = {BOOL: 'bool_value', INTEGER: 'integer_value', DOUBLE: 'double_value',
+                STRING: 'string_value', BYTE_ARRAY: 'byte_array_value',
+                BOOL_ARRAY: 'bool_array_value', INTEGER_ARRAY: 'integer_array_value',
+                DOUBLE_ARRAY: 'double_array_value', STRING_ARRAY: 'string_array_value'}
 
 
 class ParameterError(ColconWasmError):
@@ -87,7 +88,7 @@ def from_rcl(name, value):
     if not isinstance(value, dict):
         return None
     kind = value.get('type')
-    field = _FIELDS.get(kind)
+    field = VALUE_FIELDS.get(kind)
     if field is None or value.get(field) is None:
         return None
     v = value[field]

@@ -33,18 +33,14 @@ the same.
 import base64
 import json
 
+from colcon_wasm.server.foxglove_parameters import BYTE_ARRAY
 from colcon_wasm.server.foxglove_parameters import NOT_SET
 from colcon_wasm.server.foxglove_parameters import ParameterError
 from colcon_wasm.server.foxglove_parameters import to_rcl
+from colcon_wasm.server.foxglove_parameters import VALUE_FIELDS
 
 """Seconds a node's parameter service has to answer the relay."""
 PARAMETER_TIMEOUT = 5.0
-
-# rcl_interfaces/msg/ParameterType -> the field of ParameterValue that holds it
-_FIELDS = ('', 'bool_value', 'integer_value', 'double_value', 'string_value',
-           'byte_array_value', 'bool_array_value', 'integer_array_value', 'double_array_value',
-           'string_array_value')
-_BYTE_ARRAY = 5
 
 
 def split_name(name):
@@ -71,10 +67,11 @@ def plain_value(value):
     if not isinstance(value, dict):
         return False, None
     kind = value.get('type')
-    if not isinstance(kind, int) or not 0 < kind < len(_FIELDS):
+    field = VALUE_FIELDS.get(kind) if isinstance(kind, int) else None
+    if field is None:
         return False, None
-    v = value.get(_FIELDS[kind])
-    if kind == _BYTE_ARRAY and isinstance(v, str):
+    v = value.get(field)
+    if kind == BYTE_ARRAY and isinstance(v, str):
         v = list(base64.b64decode(v))
     return True, v
 
