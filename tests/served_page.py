@@ -92,3 +92,20 @@ def explain_page(result):
         text += [f'[{name}] {line}' for line in lines[-25:]]
     text += result.get('pageErrors') or []
     return '\n'.join(text)
+
+
+def param_talker_tab(done_text):
+    """
+    Return the steps of a page of rclcpp nodes on serve's relay: param_talker, listener.
+
+    The page joins the relay, then runs until its listener hears ``done_text``
+    on /chatter (what a test's clients publish once they are done).
+    """
+    probe = {'pkg': 'rmw_wasm_cpp_node_tests', 'exe': 'probe'}
+    return [
+        dict(probe, start='talker', args=['param_talker']),
+        dict(probe, start='listener', args=['listener']),
+        {'until': "colconWasm.session.bridge && colconWasm.session.bridge.state === 'connected' "
+                  '&& colconWasm.session.bridge.relay'},
+        {'wait': 'listener', 'text': f'HEARD {done_text}', 'timeoutMs': 150000},
+    ]

@@ -143,17 +143,11 @@ def test_serve_foxglove_parameters_of_a_page_node(tmp_path):
     an error status with its id, and unsubscribing.
     """
     from served_page import explain_page
+    from served_page import param_talker_tab
     from served_page import ServedPage
     install = rclcpp_build().install
-    probe = {'pkg': 'rmw_wasm_cpp_node_tests', 'exe': 'probe'}
-    tab = [
-        dict(probe, start='talker', args=['param_talker']),
-        dict(probe, start='listener', args=['listener']),
-        {'until': "colconWasm.session.bridge && colconWasm.session.bridge.state === 'connected' "
-                  '&& colconWasm.session.bridge.relay'},
-        # what the Foxglove clients publish last, once they are done
-        {'wait': 'listener', 'text': 'HEARD foxglove is done', 'timeoutMs': 150000},
-    ]
+    # the page runs until the Foxglove clients publish "foxglove is done"
+    tab = param_talker_tab('foxglove is done')
     with ServedPage(install, args=['--foxglove', '127.0.0.1:0']) as served:
         with ThreadPoolExecutor(1) as pool:
             page = pool.submit(served.run, tab, 180000)

@@ -339,15 +339,9 @@ def test_roslibjs_params_of_a_page_node_through_the_relay(install):
     """
     from concurrent.futures import ThreadPoolExecutor
     from served_page import explain_page
+    from served_page import param_talker_tab
     from served_page import ServedPage
-    probe = {'pkg': 'rmw_wasm_cpp_node_tests', 'exe': 'probe'}
-    tab = [
-        dict(probe, start='talker', args=['param_talker']),
-        dict(probe, start='listener', args=['listener']),
-        {'until': "colconWasm.session.bridge && colconWasm.session.bridge.state === 'connected' "
-                  '&& colconWasm.session.bridge.relay'},
-        {'wait': 'listener', 'text': 'HEARD roslibjs is done', 'timeoutMs': 150000},
-    ]
+    tab = param_talker_tab('roslibjs is done')
     with ServedPage(install, args=['--rosbridge', '127.0.0.1:0']) as served:
         with ThreadPoolExecutor(1) as pool:
             page = pool.submit(served.run, tab, 180000)
