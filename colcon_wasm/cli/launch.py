@@ -70,14 +70,17 @@ class LaunchCommand(CliExtensionPoint):
             help="How long to wait for a container's load_node service, and for each "
                  'answer, before a composable node counts as failed (default: %(default)s)')
         parser.add_argument(
+            '--show-args', '--show-arguments', '-s', action='store_true',
+            help='Show the arguments of a Python launch file and exit, as ros2 launch -s')
+        parser.add_argument(
             'what', nargs='*', metavar='ITEM',
-            help='A launch file (.launch.xml/.launch.yaml) with name:=value arguments, '
-                 'PKG FILE for a launch file of a package, or PKG/EXE items')
+            help='A launch file (.launch.py/.launch.xml/.launch.yaml) with name:=value '
+                 'arguments, PKG FILE for a launch file of a package, or PKG/EXE items')
 
     def main(self, *, args):  # noqa: D102
         try:
-            plan = make_plan(args.what, args.install_base) if args.what or not args.python \
-                else LaunchPlan()
+            plan = make_plan(args.what, args.install_base, show_args=args.show_args) \
+                if args.what or not args.python else LaunchPlan()
             bridges = bridge_plan(args, err=sys.stderr)
             bridges.update(foxglove_plan(args, err=sys.stderr))
             bridges.update(zenoh_plan(args))

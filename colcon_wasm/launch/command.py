@@ -13,6 +13,8 @@ from colcon_wasm.launch import split_launch_arguments
 from colcon_wasm.launch.foxglove import schema_file
 from colcon_wasm.launch.install_space import InstallSpace
 from colcon_wasm.launch.install_space import InstallSpaceError
+from colcon_wasm.launch.python_launch import is_python_launch_file
+from colcon_wasm.launch.python_launch import PythonLaunch
 from colcon_wasm.launch.runner import DEFAULT_LOAD_TIMEOUT
 from colcon_wasm.launch.runner import find_launch_file
 from colcon_wasm.launch.runner import host_plan
@@ -21,12 +23,14 @@ from colcon_wasm.launch.runner import run_host
 from colcon_wasm.launch.zenoh import resolve_gateway_module
 
 
-def make_plan(values, install_base):
+def make_plan(values, install_base, *, show_args=False):
     """
     Make a plan from the positional arguments of ``launch``.
 
     ``FILE [name:=value ...]``, ``PKG FILE [name:=value ...]`` (a launch file
-    in the package's share folder) or ``PKG/EXE [PKG/EXE ...]``.
+    in the package's share folder) or ``PKG/EXE [PKG/EXE ...]``. A Python
+    launch file gives a ``PythonLaunch`` (with ``show_args``, it prints the
+    file's arguments instead of running it).
 
     :raises LaunchError: for arguments that are none of these
     """
@@ -40,6 +44,8 @@ def make_plan(values, install_base):
             and not _names_an_executable(install_space, others[0]):
         if not first.is_file():
             raise LaunchError(f"launch file '{first}' does not exist")
+        if is_python_launch_file(first):
+            return PythonLaunch(first, arguments, show_args=show_args)
         return load_launch_file(first, arguments, install_space=install_space)
     if len(others) == 2 and '/' not in others[0] and \
             others[1].endswith(LAUNCH_FILE_SUFFIXES):
@@ -48,6 +54,8 @@ def make_plan(values, install_base):
                               'first, or '
                               'pass --install-base DIR')
         path = find_launch_file(install_space, others[0], others[1])
+        if is_python_launch_file(path):
+            return PythonLaunch(path, arguments, show_args=show_args)
         return load_launch_file(path, arguments, install_space=install_space)
     if arguments:
         given = ', '.join(f'{k}:={v}' for k, v in arguments.items())
@@ -76,6 +84,44 @@ def _add_python_nodes(description, python, install_space, bases):
     processes += python_processes(python, ament_prefixes(bases), first_index=len(processes) + 1)
 
 
+def _add_pyodide_if_installed(description, pyodide):
+    """Give the host Pyodide's folder when there is one: the launch may start Python nodes."""
+    from colcon_wasm.launch.python_nodes import find_pyodide
+    try:
+        description['pyodide'] = str(find_pyodide(pyodide))
+    except LaunchError:
+        pass  # a Python node the launch starts then fails, saying how to get Pyodide
+
+
+def _run_python_launch(launch, description, install_space, bundled, *, command, duration,
+                       print_plan, bags, out, err):
+    """Run a Python launch file beside the Node host (or print it), as ``execute`` runs a plan."""
+    if print_plan or launch.show_args:
+        return launch.describe(command=command, out=out)
+    from colcon_wasm.record.session import bag_session
+    from colcon_wasm.server import find_runtime
+    from colcon_wasm.server import runtime_entry
+    from colcon_wasm.server import ServeError
+    try:
+        runtime_dir, _ = find_runtime(install_space, bundled)
+        runtime = runtime_dir / runtime_entry(runtime_dir)
+        fds = [description['control']['ready_fd']]
+        with schema_file(description, install_space), \
+                bag_session(bags, install_space, err) as session:
+
+            def alongside(host, register):
+                return launch.run(host, register, command=command, duration=duration)
+            if session is None:
+                return run_host(description, runtime, bundled, pass_fds=fds, alongside=alongside)
+            description.update(session.host_plan)
+            status = run_host(description, runtime, bundled, pass_fds=[*session.fds, *fds],
+                              started=session.host_started, alongside=alongside)
+            return session.finish(status)
+    except (LaunchError, ServeError) as e:
+        print(f'{command}: {e}', file=err)
+        return 1
+
+
 def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, command,
             out=None, err=None, stdin=False, load_timeout=DEFAULT_LOAD_TIMEOUT,
             bases=None, bridges=None, python=(), pyodide=None, bags=None):
@@ -97,6 +143,13 @@ def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, com
     """
     out = out or sys.stdout
     err = err or sys.stderr
+    from colcon_wasm import resources
+    bundled = resources.path('packages') / 'wasm_js' / 'src'
+    python_launch = plan if isinstance(plan, PythonLaunch) else None
+    launch_duration = duration
+    if python_launch:
+        plan = python_launch.plan
+        duration = None  # the launch gets SIGINT at the end of the duration, as Ctrl-C
     try:
         install_space = InstallSpace(install_base)
         description = host_plan(plan, install_space, duration=duration, echo=echo,
@@ -111,9 +164,20 @@ def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, com
             # scripts of --python, and entry points of Python packages
             from colcon_wasm.launch.python_nodes import find_pyodide
             description['pyodide'] = str(find_pyodide(pyodide))
+        if python_launch:
+            python_launch.prepare(description, install_space, bases,
+                                  runtime_python=bundled / 'python')
+            _add_pyodide_if_installed(description, pyodide)
     except (LaunchError, InstallSpaceError) as e:
         print(f'{command}: {e}', file=err)
         return 1
+    if python_launch:
+        try:
+            return _run_python_launch(python_launch, description, install_space, bundled,
+                                      command=command, duration=launch_duration,
+                                      print_plan=print_plan, bags=bags, out=out, err=err)
+        finally:
+            python_launch.cleanup()
     if print_plan:
         for process in description['processes']:
             args = ' '.join(process['args'])
@@ -123,12 +187,10 @@ def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, com
                 print(f'[load_node {load.container_name}] {node.describe()}',
                       file=out)
         return 0
-    from colcon_wasm import resources
     from colcon_wasm.server import find_runtime
     from colcon_wasm.server import runtime_entry
     from colcon_wasm.server import ServeError
     try:
-        bundled = resources.path('packages') / 'wasm_js' / 'src'
         runtime_dir, _ = find_runtime(install_space, bundled)
         from colcon_wasm.record.session import bag_session
         with schema_file(description, install_space), \

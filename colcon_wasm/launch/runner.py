@@ -141,7 +141,7 @@ def host_plan(plan, install_space, *, duration=None, echo=(), stdin=False,
 
 
 def run_host(description, runtime_module, host_dir, *, node=None, stdout=None, stderr=None,
-             pass_fds=(), started=None):
+             pass_fds=(), started=None, alongside=None):
     """
     Run the Node host on a plan description and return its exit status.
 
@@ -153,6 +153,10 @@ def run_host(description, runtime_module, host_dir, *, node=None, stdout=None, s
     waits for the host, so the host's status is the command's status.
     ``pass_fds`` go to the host (record and replay pipes); ``started()`` is
     called once it runs.
+    ``alongside(host, register)``, when given, runs in this thread once the
+    host runs (a Python launch file: ``python_launch.PythonLaunch.run``); a
+    process it passes to ``register`` gets the SIGTERM instead of the host,
+    and the status is its own unless the host's is an error.
     """
     script = Path(host_dir) / HOST_SCRIPT
     if not script.is_file():
@@ -160,27 +164,34 @@ def run_host(description, runtime_module, host_dir, *, node=None, stdout=None, s
     description = dict(description, runtime=Path(runtime_module).as_uri())
     command = [node or find_node(), str(script), json.dumps(description)]
     main_thread = threading.current_thread() is threading.main_thread()
-    host = []
+    targets = []
     if main_thread:
         previous_int = signal.signal(signal.SIGINT, signal.SIG_IGN)
-        previous_term = signal.signal(signal.SIGTERM, lambda *_: _pass_on(host, signal.SIGTERM))
+        previous_term = signal.signal(signal.SIGTERM,
+                                      lambda *_: _pass_on(targets, signal.SIGTERM))
     try:
         process = subprocess.Popen(command, stdout=stdout, stderr=stderr, pass_fds=pass_fds,
                                    preexec_fn=_default_sigint if main_thread else None)
-        host.append(process)
+        targets.append(process)
         if started:
             started()
-        return process.wait()
+        if alongside is None:
+            return process.wait()
+        status = alongside(process, targets.append)
+        host_status = process.wait()
+        return host_status or status
     finally:
         if main_thread:
             signal.signal(signal.SIGINT, previous_int)
             signal.signal(signal.SIGTERM, previous_term)
 
 
-def _pass_on(host, number):
-    """Send the signal `number` to the host process once it is started."""
-    if host and host[0].poll() is None:
-        host[0].send_signal(number)
+def _pass_on(targets, number):
+    """Send the signal `number` to the newest target process still running."""
+    for target in reversed(targets):
+        if target.poll() is None:
+            target.send_signal(number)
+            return
 
 
 def _default_sigint():

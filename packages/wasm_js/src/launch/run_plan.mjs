@@ -18,11 +18,15 @@
  * the Foxglove server (../bridges/rosbridge/launch.mjs). `plan.record` / `plan.play` record the
  * bus and replay a bag (../bridges/record/launch.mjs): recording starts
  * before the processes and ends after them, playing after they started.
+ * With `plan.control` (a Python launch file), Humble's `launch` on the host
+ * starts the processes: each asks for its executable on this bus through the
+ * socket `plan.control.socket` (./process_server.mjs), and the host ends once
+ * the launcher says the launch has ended and its processes are gone.
  * The exit status is 1 when a process crashed or exited with a non-zero
  * code, or a composable node failed to load, 0 otherwise.
  */
 
-import { readFileSync } from 'node:fs';
+import { closeSync, readFileSync, writeSync } from 'node:fs';
 import process from 'node:process';
 import { pathToFileURL } from 'node:url';
 
@@ -134,8 +138,9 @@ async function main() {
   let finish;
   const done = new Promise((resolve) => { finish = resolve; });
 
+  let launchOver = !plan.control;
   const checkDone = () => {
-    if (pendingLoads === 0 && [...states.values()].every((s) => s !== 'running')) finish();
+    if (launchOver && pendingLoads === 0 && [...states.values()].every((s) => s !== 'running')) finish();
   };
   const loader = new ComposableLoader({
     runtime,
@@ -145,6 +150,19 @@ async function main() {
     isRunning: (label) => states.get(label) === 'running',
     out,
     err,
+  });
+
+  const startProcess = (proc, hooks) => (proc.python ? spawnPythonNode(runtimeUrl, runtime, proc, plan)
+    : (spec) => runtime.spawn(spec))({
+    url: pathToFileURL(proc.js).href,
+    args: proc.args,
+    env: proc.env,
+    name: proc.label,
+    onLog: hooks.onLog,
+    onExit: hooks.onExit,
+    stdin: plan.stdin ? true : undefined,
+    files: proc.files,
+    mounts: plan.mounts || [],
   });
 
   for (const proc of plan.processes) {
@@ -168,24 +186,59 @@ async function main() {
       checkDone();
     };
     try {
-      const handle = await (proc.python ? spawnPythonNode(runtimeUrl, runtime, proc, plan) : (spec) => runtime.spawn(spec))({
-        url: pathToFileURL(proc.js).href,
-        args: proc.args,
-        env: proc.env,
-        name: proc.label,
+      const handle = await startProcess(proc, {
         onLog: ({ stream, text }) => {
           const write = stream === 'stderr' ? err : out;
           for (const line of String(text).split('\n')) if (line !== '') write(`[${proc.label}] ${line}`);
         },
         onExit,
-        stdin: plan.stdin ? true : undefined,
-        mounts: plan.mounts || [],
       });
       handles.set(proc.label, handle);
       if (plan.stdin) forwardStdin(handle);
       out(`[INFO] [${proc.label}]: process started`);
     } catch (e) {
       onExit({ code: null, crashed: true, reason: e.message });
+    }
+  }
+
+  // a Python launch file (plan.control): real `launch` on the host starts the processes,
+  // each through a shim that asks for it here (./process_server.mjs); launch prints their
+  // output and events, this host keeps the bus, the bridges and the recording until it ends
+  let controlled = null;
+  if (plan.control) {
+    const { serveProcesses } = await import('./process_server.mjs');
+    let launchEnded;
+    controlled = { ended: new Promise((resolve) => { launchEnded = resolve; }), count: 0 };
+    controlled.server = await serveProcesses(plan.control.socket, {
+      spawn: async (proc, hooks) => {
+        const label = `${proc.label}#${++controlled.count}`;
+        states.set(label, 'running');
+        const onExit = (result) => {
+          const { code, crashed } = result;
+          if (crashed || (code !== 0 && code !== undefined && code !== null && result.reason !== 'stopped')) {
+            failed = true;
+          }
+          states.set(label, crashed ? 'crashed' : 'exited');
+          handles.delete(label);
+          hooks.onExit(result);
+          checkDone();
+        };
+        try {
+          const handle = await startProcess({ ...proc, label: proc.label }, { onLog: hooks.onLog, onExit });
+          handles.set(label, handle);
+          return handle;
+        } catch (e) {
+          states.set(label, 'crashed');
+          failed = true;
+          throw e;
+        }
+      },
+      end: () => launchEnded(),
+      err,
+    });
+    if (plan.control.ready_fd !== undefined) {
+      writeSync(plan.control.ready_fd, 'ready\n');
+      closeSync(plan.control.ready_fd);
     }
   }
 
@@ -245,8 +298,22 @@ async function main() {
   if (plan.duration) {
     setTimeout(() => stopAll(`stopping every process after ${plan.duration} s (--duration)`), plan.duration * 1000).unref();
   }
-  process.on('SIGINT', () => stopAll('user interrupted with ctrl-c (SIGINT)'));
-  process.on('SIGTERM', () => stopAll('terminated (SIGTERM)'));
+  if (controlled) {
+    // Ctrl-C is the launch's to handle: it stops its processes, then ends this host
+    process.on('SIGINT', () => {});
+    controlled.ended.then(() => {
+      launchOver = true;
+      controlled.server.close();
+      if ([...states.values()].some((s) => s === 'running')) stopAll('the launch has ended');
+      checkDone();
+    });
+  } else {
+    process.on('SIGINT', () => stopAll('user interrupted with ctrl-c (SIGINT)'));
+  }
+  process.on('SIGTERM', () => {
+    launchOver = true;
+    stopAll('terminated (SIGTERM)');
+  });
   checkDone();
   await done;
   if (bridges) await bridges.close(); // closing twice is harmless

@@ -14,6 +14,7 @@ export const RCLPY_FILES = Object.freeze([
   'rclpy/_event_loop.py',
   'rclpy/_graph.py',
   'rclpy/_messages.py',
+  'rclpy/_names.py',
   'rclpy/_native_only.py',
   'rclpy/_threads.py',
   'rclpy/_waiting.py',
@@ -37,6 +38,9 @@ export const RCLPY_FILES = Object.freeze([
   'rclpy/time_source.py',
   'rclpy/topic_endpoint_info.py',
   'rclpy/utilities.py',
+  'rclpy/validate_full_topic_name.py',
+  'rclpy/validate_namespace.py',
+  'rclpy/validate_node_name.py',
 ]);
 
 /**

@@ -15,6 +15,7 @@ from rclpy import _event_loop
 from rclpy import _messages
 from rclpy import _native_only
 from rclpy import _threads
+from rclpy.context import Context  # noqa: F401 (rclpy.Context, as rclpy has it)
 from rclpy.context import default_context
 from rclpy.executors import SingleThreadedExecutor
 

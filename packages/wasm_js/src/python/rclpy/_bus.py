@@ -19,13 +19,28 @@ import types
 
 try:
     from pyodide.ffi import to_js
-except ImportError as e:  # pragma: no cover - outside the runtime
-    raise ImportError(
-        "this rclpy runs only inside colcon-wasm's Python worker (Pyodide in a bus "
-        f"worker): run the script with 'colcon-wasm run --python FILE.py' ({e})") from None
+except ImportError:
+    # the build host's Python (a Python launch file, colcon_wasm/launch/python_launch/):
+    # launch_ros imports rclpy's pure parts (names, parameters, messages); a node there
+    # has no bus until one is attached (see _no_bus)
+    to_js = None
 
 # rclpy's modules import it from here; its functions come with attach()
 bus = types.ModuleType('_colcon_wasm_bus', "the bus functions of this node's worker")
+
+
+def _no_bus(name):
+    """Fail a bus call made before a bus is attached, saying where this rclpy runs."""
+    if name.startswith('__'):
+        raise AttributeError(name)
+    raise AttributeError(
+        f"rclpy: '{name}' needs the bus, and this process has none: colcon-wasm's rclpy runs "
+        "nodes inside its Python worker (Pyodide on the bus: 'colcon-wasm run --python "
+        "FILE.py'); on the build host (a Python launch file) it gives launch_ros its "
+        'names, parameters and messages, but no node yet')
+
+
+bus.__getattr__ = _no_bus
 
 # looked up once, by attach(): a lookup through js costs as much as the rest of the conversion
 _from_entries = None
@@ -43,9 +58,9 @@ def attach(functions):
 
 def plain_to_js(value):
     """Convert a message's plain value (dicts, lists, numbers, strings) for cdr.mjs."""
-    return to_js(value, dict_converter=_from_entries)
+    return to_js(value, dict_converter=_from_entries) if to_js else value
 
 
 def handles_to_js(handles):
     """Convert a list of endpoint handles."""
-    return to_js(list(handles))
+    return to_js(list(handles)) if to_js else list(handles)

@@ -56,7 +56,13 @@ class BusEventLoop(asyncio.BaseEventLoop):
         """One thread: a callback scheduled is seen at the next iteration anyway."""
 
 
-class BusEventLoopPolicy(asyncio.events._BaseDefaultEventLoopPolicy):
+# Pyodide's Python names it with an underscore; older ones (the build host's, which
+# imports rclpy for a Python launch file and never installs this loop) without
+_BasePolicy = getattr(asyncio.events, '_BaseDefaultEventLoopPolicy', None) or \
+    asyncio.events.BaseDefaultEventLoopPolicy
+
+
+class BusEventLoopPolicy(_BasePolicy):
     """Loops are BusEventLoops; ``get_event_loop`` makes one on first use."""
 
     _loop_factory = BusEventLoop

@@ -52,3 +52,42 @@ class InvalidParameterValueException(ParameterException):
         Exception.__init__(
             self, f'Invalid parameter value ({value}) for parameter. Reason: {reason}',
             parameter, *args)
+
+
+class NameValidationException(Exception):
+    """Raised when a topic name, node name, or namespace are invalid."""
+
+    def __init__(self, name_type, name, error_msg, invalid_index, *args):
+        """Say what is wrong, and point at it as rclpy does."""
+        msg = (f'Invalid {name_type}: {error_msg}:\n'
+               f"  '{name}'\n"
+               f"   {' ' * invalid_index}^")
+        Exception.__init__(self, msg)
+
+
+class InvalidNamespaceException(NameValidationException):
+    """Raised when a namespace is invalid."""
+
+    def __init__(self, name, error_msg, invalid_index, *args):  # noqa: D107
+        NameValidationException.__init__(self, 'namespace', name, error_msg, invalid_index)
+
+
+class InvalidNodeNameException(NameValidationException):
+    """Raised when a node name is invalid."""
+
+    def __init__(self, name, error_msg, invalid_index, *args):  # noqa: D107
+        NameValidationException.__init__(self, 'node name', name, error_msg, invalid_index)
+
+
+class InvalidTopicNameException(NameValidationException):
+    """Raised when a topic name is invalid."""
+
+    def __init__(self, name, error_msg, invalid_index, *args):  # noqa: D107
+        NameValidationException.__init__(self, 'topic name', name, error_msg, invalid_index)
+
+
+class InvalidServiceNameException(NameValidationException):
+    """Raised when a service name is invalid."""
+
+    def __init__(self, name, error_msg, invalid_index, *args):  # noqa: D107
+        NameValidationException.__init__(self, 'service name', name, error_msg, invalid_index)

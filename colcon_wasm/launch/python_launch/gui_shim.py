@@ -1,0 +1,41 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""
+The host process of a GUI program a launch file starts (``gui_programs.py``).
+
+It says what was left out and why, then waits until the launch stops it,
+as the program's window would stay open; it exits cleanly on SIGINT or
+SIGTERM. Standard library only.
+
+Usage::
+
+    python3 gui_shim.py PKG/EXE REASON [ARGS ...]
+"""
+
+import signal
+import sys
+
+
+def note(item, reason, args):
+    """Return the line that says the program is not started, and what its file was."""
+    text = (f'[colcon-wasm] {item} is not started: {reason}, with no WebAssembly build; '
+            'the launch goes on without it')
+    if '-d' in args[:-1]:
+        text += f" (its display file {args[args.index('-d') + 1]} is not shown headless)"
+    return text
+
+
+def main(argv=None):
+    """Print the note, then wait for SIGINT or SIGTERM; exit 0."""
+    argv = sys.argv[1:] if argv is None else argv
+    item, reason, args = argv[0], argv[1], argv[2:]
+    print(note(item, reason, args), file=sys.stderr, flush=True)
+    for number in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(number, lambda *_: sys.exit(0))
+    while True:
+        signal.pause()
+
+
+if __name__ == '__main__':
+    sys.exit(main())
