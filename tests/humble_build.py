@@ -83,6 +83,12 @@ def corpus_snapshot():
         'COLCON_WASM_CORPUS', REPO.parent / 'shared' / 'corpus')).resolve()
 
 
+def control_snapshot():
+    """Get the control-stack snapshot ($COLCON_WASM_CORPUS_CONTROL): ros2_control, launch."""
+    return Path(os.environ.get(
+        'COLCON_WASM_CORPUS_CONTROL', REPO.parent / 'shared' / 'corpus-control')).resolve()
+
+
 def cache_root():
     """Get the cache folder ($COLCON_WASM_CACHE)."""
     return Path(os.environ.get(
@@ -161,9 +167,12 @@ def _emscripten_version():
 
 
 def inputs_hash(up_to, skip, extra, colcon_args=(), corpus=(), underlay=None,
-                snapshot=True):
+                snapshot=True, control=()):
     """Hash what the build depends on."""
     digest = hashlib.sha256()
+    if control:
+        digest.update(_file_digest(control_snapshot() / 'src.tar.xz').encode())
+        digest.update(json.dumps(sorted(control)).encode())
     if snapshot:
         digest.update(_file_digest(humble_snapshot() / 'src.tar.xz').encode())
     if corpus:
@@ -233,7 +242,8 @@ def prune_stale_builds(max_age_hours=24):
         return
     limit = time.time() - max_age_hours * 3600
     for folder in root.glob('humble-*'):
-        if not folder.is_dir() or folder.name.startswith(('humble-src-', 'humble-corpus-src-')):
+        if not folder.is_dir() or folder.name.startswith(
+                ('humble-src-', 'humble-corpus-src-', 'humble-control-src-')):
             continue  # the unpacked snapshots, shared by every build
         marker = folder / 'result.json'
         used = (marker if marker.is_file() else folder).stat().st_mtime
@@ -262,7 +272,7 @@ class HumbleBuild:
 
 def humble_build(up_to=BELOW_RMW_UP_TO, skip=BELOW_RMW_SKIP,
                  extra=EXTRA_PACKAGES, colcon_args=(), corpus=(), underlay=None,
-                 snapshot=True):
+                 snapshot=True, control=()):
     """
     Build (or reuse) the Humble snapshot with `colcon build --wasm`.
 
@@ -276,6 +286,8 @@ def humble_build(up_to=BELOW_RMW_UP_TO, skip=BELOW_RMW_SKIP,
     :param underlay: a :class:`HumbleBuild` to build on (`--wasm-underlay`)
     :param bool snapshot: add the Humble snapshot's sources (False for an
       overlay of an underlay that holds them)
+    :param control: repository folders of the control-stack snapshot to add
+      (e.g. 'ros2/launch_ros'), unmodified
     :returns: the :class:`HumbleBuild`
     :raises pytest.skip.Exception: when the snapshot is absent
     :raises AssertionError: when the build fails (with its log tail)
@@ -286,12 +298,15 @@ def humble_build(up_to=BELOW_RMW_UP_TO, skip=BELOW_RMW_SKIP,
     if corpus and not (corpus_snapshot() / 'src.tar.xz').is_file():
         pytest.skip(f'Humble corpus snapshot not found at {corpus_snapshot()} '
                     '(set COLCON_WASM_CORPUS)')
-    key = inputs_hash(up_to, skip, extra, colcon_args, corpus, underlay, snapshot)
+    if control and not (control_snapshot() / 'src.tar.xz').is_file():
+        pytest.skip(f'Humble control-stack snapshot not found at {control_snapshot()} '
+                    '(set COLCON_WASM_CORPUS_CONTROL)')
+    key = inputs_hash(up_to, skip, extra, colcon_args, corpus, underlay, snapshot, control)
     with cache_lock(f'humble-{key}'):
-        return _build(key, up_to, skip, extra, colcon_args, corpus, underlay, snapshot)
+        return _build(key, up_to, skip, extra, colcon_args, corpus, underlay, snapshot, control)
 
 
-def _build(key, up_to, skip, extra, colcon_args, corpus, underlay, snapshot):
+def _build(key, up_to, skip, extra, colcon_args, corpus, underlay, snapshot, control=()):
     """Build into the cache entry of `key`, or reuse it (the caller holds its lock)."""
     workspace = cache_root() / f'humble-{key}'
     if key in _FAILED:
@@ -311,6 +326,11 @@ def _build(key, up_to, skip, extra, colcon_args, corpus, underlay, snapshot):
         for repository in corpus:
             shutil.copytree(corpus_source / repository,
                             workspace / 'src' / 'corpus' / repository, symlinks=True)
+    if control:
+        control_source = unpacked_source(control_snapshot(), 'humble-control-src')
+        for repository in control:
+            shutil.copytree(control_source / repository,
+                            workspace / 'src' / 'control' / repository, symlinks=True)
     for name, folder in extra.items():
         shutil.copytree(folder, workspace / 'src' / 'extra' / name)
     src_digest_before = source_digest(workspace / 'src')

@@ -392,7 +392,7 @@ $(env COLCON_WASM_UNSET fallback) '$(var n) quoted' $(anon x) $(and true $(not f
      r":3: parameter 'x': 'a' is not a int"),
     ('bad.launch.xml', '<launch>\n  <node pkg="p" exec="e" if="maybe"/>\n</launch>\n',
      r":2: a condition must be true/false or 1/0, got 'maybe'"),
-    ('bad.launch.py', 'print()\n', r'Python launch files are not supported'),
+    ('bad.launch.py', 'print()\n', r"Python launch files are not read here: Humble's launch runs"),
 ])
 def test_errors_name_the_file_and_line(tmp_path, name, text, message):
     path = tmp_path / name

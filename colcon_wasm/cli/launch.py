@@ -13,6 +13,7 @@ from colcon_wasm.launch.command import make_plan
 from colcon_wasm.launch.foxglove import add_foxglove_arguments
 from colcon_wasm.launch.foxglove import foxglove_plan
 from colcon_wasm.launch.install_space import InstallSpaceError
+from colcon_wasm.launch.python_launch import HostLaunch
 from colcon_wasm.launch.rosbridge import add_rosbridge_arguments
 from colcon_wasm.launch.rosbridge import bridge_plan
 from colcon_wasm.launch.runner import DEFAULT_LOAD_TIMEOUT
@@ -81,6 +82,11 @@ class LaunchCommand(CliExtensionPoint):
         try:
             plan = make_plan(args.what, args.install_base, show_args=args.show_args) \
                 if args.what or not args.python else LaunchPlan()
+            if args.show_args and not isinstance(plan, HostLaunch):
+                raise LaunchError(
+                    "--show-args shows the arguments of a launch file that Humble's launch "
+                    'runs: a .launch.py file, or an XML or YAML one in an install space with '
+                    'launch_ros')
             bridges = bridge_plan(args, err=sys.stderr)
             bridges.update(foxglove_plan(args, err=sys.stderr))
             bridges.update(zenoh_plan(args))

@@ -13,8 +13,8 @@ from colcon_wasm.launch import split_launch_arguments
 from colcon_wasm.launch.foxglove import schema_file
 from colcon_wasm.launch.install_space import InstallSpace
 from colcon_wasm.launch.install_space import InstallSpaceError
-from colcon_wasm.launch.python_launch import is_python_launch_file
-from colcon_wasm.launch.python_launch import PythonLaunch
+from colcon_wasm.launch.python_launch import HostLaunch
+from colcon_wasm.launch.python_launch import runs_on_host_launch
 from colcon_wasm.launch.runner import DEFAULT_LOAD_TIMEOUT
 from colcon_wasm.launch.runner import find_launch_file
 from colcon_wasm.launch.runner import host_plan
@@ -28,9 +28,10 @@ def make_plan(values, install_base, *, show_args=False):
     Make a plan from the positional arguments of ``launch``.
 
     ``FILE [name:=value ...]``, ``PKG FILE [name:=value ...]`` (a launch file
-    in the package's share folder) or ``PKG/EXE [PKG/EXE ...]``. A Python
-    launch file gives a ``PythonLaunch`` (with ``show_args``, it prints the
-    file's arguments instead of running it).
+    in the package's share folder) or ``PKG/EXE [PKG/EXE ...]``. A launch
+    file that Humble's launch runs (``python_launch.runs_on_host_launch``)
+    gives a ``HostLaunch`` (with ``show_args``, it prints the file's
+    arguments instead of running it).
 
     :raises LaunchError: for arguments that are none of these
     """
@@ -44,8 +45,8 @@ def make_plan(values, install_base, *, show_args=False):
             and not _names_an_executable(install_space, others[0]):
         if not first.is_file():
             raise LaunchError(f"launch file '{first}' does not exist")
-        if is_python_launch_file(first):
-            return PythonLaunch(first, arguments, show_args=show_args)
+        if runs_on_host_launch(first, install_space):
+            return HostLaunch(first, arguments, show_args=show_args)
         return load_launch_file(first, arguments, install_space=install_space)
     if len(others) == 2 and '/' not in others[0] and \
             others[1].endswith(LAUNCH_FILE_SUFFIXES):
@@ -54,8 +55,8 @@ def make_plan(values, install_base, *, show_args=False):
                               'first, or '
                               'pass --install-base DIR')
         path = find_launch_file(install_space, others[0], others[1])
-        if is_python_launch_file(path):
-            return PythonLaunch(path, arguments, show_args=show_args)
+        if runs_on_host_launch(path, install_space):
+            return HostLaunch(path, arguments, show_args=show_args)
         return load_launch_file(path, arguments, install_space=install_space)
     if arguments:
         given = ', '.join(f'{k}:={v}' for k, v in arguments.items())
@@ -145,7 +146,7 @@ def execute(plan, *, install_base, duration=None, echo=(), print_plan=False, com
     err = err or sys.stderr
     from colcon_wasm import resources
     bundled = resources.path('packages') / 'wasm_js' / 'src'
-    python_launch = plan if isinstance(plan, PythonLaunch) else None
+    python_launch = plan if isinstance(plan, HostLaunch) else None
     launch_duration = duration
     if python_launch:
         plan = python_launch.plan

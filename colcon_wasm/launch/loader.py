@@ -47,8 +47,9 @@ def read_launch_file(path):
     suffix = path.name.lower()
     if suffix.endswith('.py'):
         raise LaunchError(
-            'Python launch files are not supported: colcon-wasm launch reads XML '
-            '(.launch.xml) and YAML (.launch.yaml) launch files, or PKG/EXE items', path)
+            "Python launch files are not read here: Humble's launch runs them "
+            "('colcon-wasm launch FILE.launch.py', colcon_wasm/launch/python_launch/); this "
+            'reader takes XML (.launch.xml) and YAML (.launch.yaml) launch files', path)
     if suffix.endswith('.xml'):
         return read_xml(path)
     if suffix.endswith(('.yaml', '.yml')):

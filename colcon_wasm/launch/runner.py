@@ -154,7 +154,7 @@ def run_host(description, runtime_module, host_dir, *, node=None, stdout=None, s
     ``pass_fds`` go to the host (record and replay pipes); ``started()`` is
     called once it runs.
     ``alongside(host, register)``, when given, runs in this thread once the
-    host runs (a Python launch file: ``python_launch.PythonLaunch.run``); a
+    host runs (a Python launch file: ``python_launch.HostLaunch.run``); a
     process it passes to ``register`` gets the SIGTERM instead of the host,
     and the status is its own unless the host's is an error.
     """

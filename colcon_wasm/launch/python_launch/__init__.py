@@ -33,13 +33,32 @@ FRONT_MODULE = 'colcon_wasm.launch.python_launch.front'
 SOCKET_NAME = 'bus.sock'
 
 
-def is_python_launch_file(path):
-    """Tell whether a launch file is Python (``.py``), which launch itself evaluates."""
-    return str(path).endswith('.py')
+"""The package of Humble's launch that reads each kind of launch file."""
+FRONTEND_PACKAGES = (('.py', 'launch_ros'), ('.xml', 'launch_xml'), ('.yaml', 'launch_yaml'),
+                     ('.yml', 'launch_yaml'))
 
 
-class PythonLaunch:
-    """One Python launch file, its arguments and the launch's private folder."""
+def runs_on_host_launch(path, install_space):
+    """
+    Tell whether Humble's launch runs a launch file, rather than colcon-wasm's own reader.
+
+    Python files always do. XML and YAML files do when the install space has
+    launch_ros and the file's frontend (``launch_xml``, ``launch_yaml``): one
+    launch path, with includes of every kind. Without them, colcon-wasm's
+    reader (``colcon_wasm.launch.loader``) reads them.
+    """
+    name = str(path).lower()
+    if name.endswith('.py'):
+        return True
+    if install_space is None:
+        return False
+    packages = install_space.packages()
+    frontend = next((p for suffix, p in FRONTEND_PACKAGES if name.endswith(suffix)), None)
+    return frontend is not None and frontend in packages and 'launch_ros' in packages
+
+
+class HostLaunch:
+    """One launch file that Humble's launch runs, its arguments and the launch's private folder."""
 
     def __init__(self, path, arguments, *, show_args=False):
         """
@@ -77,7 +96,8 @@ class PythonLaunch:
     def front_command(self, *, command, print_only=False):
         """Return the command line of ``front.py``."""
         options = {'file': str(self.path), 'arguments': self.arguments, 'types': self.types,
-                   'show_args': self.show_args, 'print': print_only, 'command': command}
+                   'show_args': self.show_args, 'print': print_only, 'command': command,
+                   'socket': None if print_only else self.prefix.config['socket']}
         return [sys.executable, '-m', FRONT_MODULE, json.dumps(options)]
 
     def front_environment(self):

@@ -12,9 +12,11 @@ through ``IncludeLaunchDescription``, with the ``name:=value`` arguments.
 launch, launch_ros, launch_xml and launch_yaml are the install's, unmodified.
 
 Two things happen first, so that launch_ros imports on the build host:
-``rclpy`` is colcon-wasm's (``packages/wasm_js/src/python/rclpy``, its pure
-Python parts), and interface modules (``lifecycle_msgs.msg``, ...) are made
-from the install's type descriptions, as they are for Python nodes.
+``rclpy`` is colcon-wasm's (``packages/wasm_js/src/python/rclpy``), and
+interface modules (``lifecycle_msgs.msg``, ...) are made from the install's
+type descriptions, as they are for Python nodes. The node launch_ros makes
+for LoadComposableNodes and LifecycleNode is on the launch's bus: rclpy's
+bus functions go over the launch's socket (``rclpy/_host_link.py``).
 
 Usage (by ``colcon_wasm.launch.python_launch``)::
 
@@ -177,6 +179,10 @@ def main(argv=None):
     options = json.loads(argv[0])
     try:
         prepare_interfaces(options.get('types', []))
+        if options.get('socket'):
+            # launch_ros' ROS node (LoadComposableNodes, LifecycleNode): on the launch's bus
+            from rclpy import _bus
+            _bus.link_on_first_use(options['socket'])
         import_launch()
         return run(options)
     except FrontError as e:

@@ -293,12 +293,14 @@ function connectStdin(pipe, client) {
  * Write the START message's files into the executable's file system (MEMFS).
  * @param {Object<string, string|Uint8Array>|undefined} files
  * @param {string} url the executable, for messages
+ * @param {boolean} optional without a file system the executable reads no files: skip them
  */
-function writeFiles(files, url) {
+function writeFiles(files, url, optional) {
   const entries = Object.entries(files || {});
   if (!entries.length) return;
   const FS = globalThis.FS;
   if (!FS || typeof FS.writeFile !== 'function') {
+    if (optional) return;
     throw new Error(`${url} was linked without a file system (-sFILESYSTEM=0): cannot give it files`);
   }
   for (const [path, content] of entries) {
@@ -379,7 +381,7 @@ export async function startProcess(msg, platform) {
         // Executables that do not link wasm_cpp get their environment here.
         if (typeof globalThis.ENV === 'object' && globalThis.ENV) Object.assign(globalThis.ENV, env);
         if (msg.stdin) connectStdin(new StdinPipe(msg.stdin), client);
-        writeFiles(msg.files, msg.url);
+        writeFiles(msg.files, msg.url, msg.filesOptional);
         mountReadOnlyViews(msg.mounts, platform, msg.url,
           (text) => post({ type: FromWorker.LOG, stream: 'stderr', text }));
       }],

@@ -297,6 +297,9 @@ export class Runtime {
    *   without it standard input is empty
    * @param {Object<string, string|Uint8Array>} [spec.files] files written into the executable's
    *   file system before main() runs (absolute path → content), e.g. a `--params-file`
+   * @param {boolean} [spec.filesOptional=false] an executable linked without a file system
+   *   (which reads no files) starts without `files` instead of failing (a launch file's
+   *   parameters given to a program that is no ROS node)
    * @param {Array<{path: string, url?: string}>} [spec.mounts] read-only views of host
    *   directories (install spaces), at the same absolute paths in the executable, mounted
    *   before main() runs and read lazily: from the host's files under Node.js, from `url`
@@ -358,7 +361,7 @@ export class Runtime {
       proc._finish({ code, crashed: code !== 0, reason: code !== 0 ? `worker exited with code ${code}` : '' });
     });
     worker.postMessage({
-      type: ToWorker.START, bus: this.bus.handle, pid, url, wasmUrl, glueFile, args, env, name, wasmModule, stdin: stdinPipe && stdinPipe.sab, files, mounts, scripts,
+      type: ToWorker.START, bus: this.bus.handle, pid, url, wasmUrl, glueFile, args, env, name, wasmModule, stdin: stdinPipe && stdinPipe.sab, files, filesOptional: !!spec.filesOptional, mounts, scripts,
       busModuleUrl: siblingUrl('bus_client.mjs'), workerModuleUrl: siblingUrl('program_worker.mjs'),
     });
     return proc;

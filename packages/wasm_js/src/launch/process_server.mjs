@@ -19,7 +19,10 @@
  *                 {ev: 'log', stream: 'stdout'|'stderr', text}
  *                 {ev: 'exit', code, crashed, reason}
  *   launcher -> host  {op: 'end'}: the launch has finished; stop what is left
- * A connection is one process; closing it stops the process (the shim was killed).
+ *   rclpy -> host  {op: 'link'}, answered {ev: 'linked'}, then {id, fn, args} calls of the
+ *                  bus functions, answered {id, result} or {id, error} (./host_link_worker.mjs)
+ * A connection is one process, or one link; closing it stops the process (the shim was
+ * killed), or removes the link's bus process.
  */
 
 import net from 'node:net';
@@ -33,11 +36,13 @@ const MAX_LINE = 64 * 1024 * 1024; // a spawn carries --params-file contents
  * @param {function(object, object): Promise<object>} hooks.spawn start a process of the plan's
  *   form with `{onLog, onExit}` and return its handle (`stop()`)
  * @param {function(): void} hooks.end the launcher said the launch has finished
+ * @param {function(): Promise<object>} hooks.link start a bus process for the build host's
+ *   rclpy (./host_link.mjs)
  * @param {function(string): void} hooks.err report a broken connection
  * @returns {Promise<net.Server>} once it listens
  */
-export function serveProcesses(path, { spawn, end, err }) {
-  const server = net.createServer((socket) => serveConnection(socket, { spawn, end, err }));
+export function serveProcesses(path, hooks) {
+  const server = net.createServer((socket) => serveConnection(socket, hooks));
   return new Promise((resolve, reject) => {
     server.once('error', reject);
     server.listen(path, () => {
@@ -47,9 +52,10 @@ export function serveProcesses(path, { spawn, end, err }) {
   });
 }
 
-function serveConnection(socket, { spawn, end, err }) {
+function serveConnection(socket, { spawn, end, link, err }) {
   let buffered = '';
   let handle = null;
+  let linked = null;
   let pending = null; // a signal that came before the process started
   let exited = false;
   const send = (message) => {
@@ -59,7 +65,13 @@ function serveConnection(socket, { spawn, end, err }) {
     if (handle && !exited) handle.stop();
   };
   const onRequest = async (message) => {
-    if (message.op === 'end') {
+    if (linked && message.id !== undefined) {
+      linked.post(message);
+    } else if (message.op === 'link') {
+      linked = await link();
+      linked.onAnswer(send);
+      send({ ev: 'linked' });
+    } else if (message.op === 'end') {
       end();
     } else if (message.op === 'spawn') {
       if (handle || pending === 'spawning') {
@@ -120,7 +132,10 @@ function serveConnection(socket, { spawn, end, err }) {
       onRequest(message).catch((e) => err(`[ERROR] [launch]: ${e && e.stack ? e.stack : e}`));
     }
   });
-  // the shim was killed (SIGKILL) or ended: its program goes too
-  socket.on('close', stop);
+  // the shim was killed (SIGKILL) or ended: its program goes too; a link's bus process too
+  socket.on('close', () => {
+    stop();
+    if (linked) linked.close();
+  });
   socket.on('error', () => {});
 }

@@ -162,6 +162,8 @@ async function main() {
     onExit: hooks.onExit,
     stdin: plan.stdin ? true : undefined,
     files: proc.files,
+    // a launch file's parameters, given to a program that is no ROS node, are not read
+    filesOptional: !!plan.control,
     mounts: plan.mounts || [],
   });
 
@@ -234,6 +236,10 @@ async function main() {
         }
       },
       end: () => launchEnded(),
+      link: async () => {
+        const { startHostLink } = await import('./host_link.mjs');
+        return startHostLink(runtime, plan.types || []);
+      },
       err,
     });
     if (plan.control.ready_fd !== undefined) {

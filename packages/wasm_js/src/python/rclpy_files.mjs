@@ -13,6 +13,7 @@ export const RCLPY_FILES = Object.freeze([
   'rclpy/_bus.py',
   'rclpy/_event_loop.py',
   'rclpy/_graph.py',
+  'rclpy/_host_link.py',
   'rclpy/_messages.py',
   'rclpy/_names.py',
   'rclpy/_native_only.py',

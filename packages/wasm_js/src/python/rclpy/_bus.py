@@ -15,6 +15,7 @@ object may be held: :data:`bus` is a Python module whose functions
 starts.
 """
 
+import threading
 import types
 
 try:
@@ -29,10 +30,36 @@ except ImportError:
 bus = types.ModuleType('_colcon_wasm_bus', "the bus functions of this node's worker")
 
 
+# the socket of a Python launch file's host (link_on_first_use), and its guard
+_link_path = None
+_link_lock = threading.Lock()
+
+
+def link_on_first_use(path):
+    """On the build host: attach the bus of the launch at ``path`` when rclpy first needs it."""
+    global _link_path
+    _link_path = path
+
+
+def attach_host(functions):
+    """Take the bus functions of the build host (rclpy/_host_link.py)."""
+    for name in dir(functions):
+        if not name.startswith('_'):
+            setattr(bus, name, getattr(functions, name))
+
+
 def _no_bus(name):
-    """Fail a bus call made before a bus is attached, saying where this rclpy runs."""
+    """Attach the launch's bus on first use, or fail a bus call saying where this rclpy runs."""
+    global _link_path
     if name.startswith('__'):
         raise AttributeError(name)
+    with _link_lock:
+        if _link_path is not None and name not in bus.__dict__:
+            from rclpy import _host_link
+            path, _link_path = _link_path, None
+            _host_link.attach(path)
+    if name in bus.__dict__:
+        return bus.__dict__[name]
     raise AttributeError(
         f"rclpy: '{name}' needs the bus, and this process has none: colcon-wasm's rclpy runs "
         "nodes inside its Python worker (Pyodide on the bus: 'colcon-wasm run --python "
