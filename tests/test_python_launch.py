@@ -20,8 +20,6 @@ from pathlib import Path
 import re
 import sys
 
-import pytest
-
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import demo_build  # noqa: E402, I100, I202
@@ -63,7 +61,8 @@ def test_ros2launch_include_example_with_its_default_argument_from_the_environme
     build = launch_build()
     code, out = _launch(build, upstream_examples() / 'includes_example.launch.py',
                         until=_seen(r'\[FOOlistener\]: I heard'))
-    assert f"Including launch file located at: {upstream_examples()}/example.launch.py" in out, out
+    assert f'Including launch file located at: {upstream_examples()}/example.launch.py' in out, \
+        out
     assert re.search(r"\[FOOtalker\]: Publishing: 'Hello World", out), out
     assert code == 0, out
 
@@ -135,7 +134,8 @@ def test_composable_node_container_and_load_composable_nodes():
 
 def test_includes_xml_to_python_to_yaml():
     build = launch_build()
-    code, out = _launch(build, _share(build, 'launch_cases') / 'launch' / 'includes_python.launch.xml',
+    launch_file = _share(build, 'launch_cases') / 'launch' / 'includes_python.launch.xml'
+    code, out = _launch(build, launch_file,
                         until=_seen(r'\[yaml_listener\]: I heard: \[Hello World'))
     assert re.search(r'\[yaml_listener\]: I heard: \[Hello World: \d+\]', out), out
     assert code == 0, out
@@ -159,7 +159,8 @@ def test_unknown_and_missing_arguments_list_the_files_arguments(tmp_path):
     code, out = _launch(build, 'launch_cases', 'robot.launch.py', 'arm_lenght:=2')
     assert "no launch argument named 'arm_lenght'" in out, out
     assert "Arguments (pass arguments as '<name>:=<value>'):" in out, out
-    assert "'arm_length':\n        Length of the arm link (m)\n        (default: '0.5')" in out, out
+    assert "'arm_length':\n        Length of the arm link (m)\n        (default: '0.5')" in out, \
+        out
     assert code == 1, out
     required = tmp_path / 'needs.launch.py'
     required.write_text(
@@ -192,7 +193,8 @@ def test_a_command_that_fails_names_the_command_and_its_output(tmp_path):
         'from launch.actions import LogInfo\n'
         'from launch.substitutions import Command\n\n\n'
         'def generate_launch_description():\n'
-        "    return LaunchDescription([LogInfo(msg=Command(['sh -c \"echo oops >&2; exit 4\"']))])\n")
+        '    return LaunchDescription([LogInfo(msg=Command(\n'
+        "        ['sh -c \"echo oops >&2; exit 4\"']))])\n")
     code, out = _launch(build, launch_file)
     assert 'executed command failed' in out, out
     assert 'oops' in out, out
@@ -207,5 +209,6 @@ def test_without_launch_ros_the_error_says_what_to_build(tmp_path):
                launch_file]
     code, out = run_until(command)
     assert "Python launch files run with Humble's launch and launch_ros" in out, out
-    assert "colcon build --wasm --packages-up-to launch launch_ros launch_xml launch_yaml" in out, out
+    assert 'colcon build --wasm --packages-up-to launch launch_ros launch_xml launch_yaml' \
+        in out, out
     assert code == 1, out

@@ -14,15 +14,15 @@ import os
 from pathlib import Path
 import sys
 
+from colcon_wasm.launch.python_launch import front
+from colcon_wasm.launch.python_launch import gui_shim
+from colcon_wasm.launch.python_launch import node_shim
 import pytest
 
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO / 'packages' / 'wasm_js' / 'src' / 'python'))
 
-from colcon_wasm.launch.python_launch import front  # noqa: E402
-from colcon_wasm.launch.python_launch import gui_shim  # noqa: E402
-from colcon_wasm.launch.python_launch import node_shim  # noqa: E402
-from rclpy import _host_link  # noqa: E402
+from rclpy import _host_link  # noqa: E402, I202
 from rclpy.validate_full_topic_name import validate_full_topic_name  # noqa: E402
 from rclpy.validate_namespace import validate_namespace  # noqa: E402
 from rclpy.validate_node_name import validate_node_name  # noqa: E402
@@ -34,7 +34,8 @@ from rclpy.validate_node_name import validate_node_name  # noqa: E402
     ('', 'namespace must not be empty', 0),
     ('robot', "namespace must be absolute, it must lead with a '/'", 0),
     ('/robot/', "namespace must not end with a '/', unless only a '/'", 6),
-    ('/ro-bot', "namespace must not contain characters other than alphanumerics, '_', or '/'", 3),
+    ('/ro-bot',
+     "namespace must not contain characters other than alphanumerics, '_', or '/'", 3),
     ('/a//b', "namespace must not contain repeated '/'", 3),
     ('/a/1b', 'namespace must not have a token that starts with a number', 3),
     ('/' + 'a' * 245, "namespace should not exceed '245'", 244),
@@ -97,7 +98,8 @@ def test_shim_gives_real_paths_and_what_the_launch_set(tmp_path):
     environ = dict(config['base_environment'], PATH='/other', MY_VAR='1', HOME='/root')
     env = node_shim.node_environment(config, real, environ)
     # the launch's own variables and the ROS ones; host-only ones never
-    assert env == {'MY_VAR': '1', 'ROS_DOMAIN_ID': '3', 'AMENT_PREFIX_PATH': '/ws/install_wasm/pkg'}
+    assert env == {'MY_VAR': '1', 'ROS_DOMAIN_ID': '3',
+                   'AMENT_PREFIX_PATH': '/ws/install_wasm/pkg'}
 
 
 def test_shim_reads_the_parameter_files_outside_the_views(tmp_path):
