@@ -185,3 +185,13 @@ def test_host_prefix_of_an_install(tmp_path):
         os.close(launch.ready)
         os.close(launch.ready_for_host)
         launch.cleanup()
+
+
+def test_a_missing_host_tool_is_named_with_its_package():
+    import logging
+    record = logging.LogRecord('launch', logging.ERROR, __file__, 1,
+                               'Caught exception in launch (see debug for traceback): '
+                               "executable 'xacro' not found on the PATH", None, None)
+    assert front.MissingToolHint().filter(record)
+    assert "'xacro' comes from the package 'xacro': build it into the install space " \
+        "('colcon build --wasm --packages-up-to xacro')" in record.msg

@@ -24,6 +24,8 @@ Usage (by ``colcon_wasm.launch.python_launch``)::
 """
 
 import json
+import logging
+import re
 import sys
 import traceback
 
@@ -150,9 +152,35 @@ def check_arguments(path, description, given):
             'is not given (pass it as name:=value).\n' + arguments_text(description))
 
 
+#: host programs launch files run with Command/FindExecutable, and the package of each
+HOST_TOOL_PACKAGES = {'xacro': 'xacro'}
+_NOT_FOUND = re.compile(r"executable '([^']+)' not found on the PATH")
+
+
+class MissingToolHint(logging.Filter):
+    """Add to launch's "not found on the PATH" which package gives the program, and how."""
+
+    def filter(self, record):  # noqa: A003 (logging's name)
+        """Append the hint to a record that names a missing executable."""
+        match = _NOT_FOUND.search(str(record.msg))
+        if match:
+            tool = match.group(1)
+            package = HOST_TOOL_PACKAGES.get(tool)
+            if package:
+                hint = (f"'{tool}' comes from the package '{package}': build it into the "
+                        f"install space ('colcon build --wasm --packages-up-to {package}'); "
+                        'its bin/ programs run on the build host')
+            else:
+                hint = (f"'{tool}' is looked for in the install's bin/ folders (Python "
+                        "programs, run on the build host) and on the host's PATH")
+            record.msg = f'{record.msg} ({hint})'
+        return True
+
+
 def run(options):
     """Run (or describe) the launch file of ``options``; return the exit status."""
     import launch
+    launch.logging.get_logger('launch').addFilter(MissingToolHint())
     path = options['file']
     given = parse_arguments(options.get('arguments', []))
     description = load_description(path)
