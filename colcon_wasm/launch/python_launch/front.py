@@ -29,11 +29,13 @@ import re
 import sys
 import traceback
 
+from colcon_wasm.error import ColconWasmError
+
 #: what to build when launch is missing (the Humble packages ros2 launch runs on)
 LAUNCH_PACKAGES = ('launch', 'launch_ros', 'launch_xml', 'launch_yaml')
 
 
-class FrontError(Exception):
+class FrontError(ColconWasmError):
     """A launch file or its arguments that cannot be launched; the text says why."""
 
 
