@@ -181,7 +181,7 @@ def test_show_args_and_print_plan():
     assert "'gui':\n        Start the GUI\n        (default: 'false')" in out, out
     code, out = _launch(build, '--print-plan', 'launch_cases', 'robot.launch.py')
     assert code == 0, out
-    assert '<launch_ros.actions.node.Node object' in out, out
+    assert "ExecInPkg(pkg='robot_state_publisher', exec='robot_state_publisher')" in out, out
     assert 'process started' not in out, out
 
 

@@ -87,8 +87,13 @@ def load_description(path):
     :raises FrontError: with the traceback from the file's frames, when loading raises
     """
     from launch.launch_description_sources import get_launch_description_from_any_launch_file
+    from launch.launch_description_sources import get_launch_description_from_python_launch_file
+    # a Python file directly: launch's any-file loader would hide its exception behind a
+    # list of what each frontend made of it
+    load = get_launch_description_from_python_launch_file if str(path).endswith('.py') \
+        else get_launch_description_from_any_launch_file
     try:
-        return get_launch_description_from_any_launch_file(str(path))
+        return load(str(path))
     except Exception:
         raise FrontError(f'{path}: loading the launch file failed:\n{_load_trace(path)}') \
             from None

@@ -22,6 +22,7 @@ import { blockingStdinRead, runtimeWarning } from '../program_worker.mjs';
 import { FromWorker } from '../protocol.mjs';
 import { StdinPipe } from '../stdin_pipe.mjs';
 import { busModule } from './bus_module.mjs';
+import { loadDistributionPackages } from './distribution.mjs';
 import { RCLPY_FILES, SNAPSHOT_RCLPY_MODULES } from './rclpy_files.mjs';
 
 /** Where the rclpy package lives inside Pyodide's file system. */
@@ -95,6 +96,11 @@ async function writeRclpy(pyodide) {
   });
 }
 
+/** The Pyodide folder (Node.js: a path ending in the separator) or its URL (browser). */
+function pyodideIndex(msg) {
+  return isNode ? `${msg.pyodideDir.replace(/\/$/, '')}/` : new URL(msg.pyodideUrl, self.location.href).href;
+}
+
 /** Import Pyodide's loader from its folder (Node.js) or URL (browser). */
 async function importPyodide(msg) {
   if (isNode) {
@@ -115,7 +121,7 @@ import sys
 import traceback
 
 
-def _colcon_wasm_run(file, source, args, env):
+def _colcon_wasm_run(file, source, args, env, absent):
     sys.argv = [file] + list(args)
     os.environ.update(env)
     sys.path.insert(0, os.path.dirname(file))
@@ -128,6 +134,8 @@ def _colcon_wasm_run(file, source, args, env):
         import _colcon_wasm_bus
         import rclpy
         rclpy._attach_to_worker(_colcon_wasm_bus)
+        # Pyodide's packages whose wheels the Pyodide folder lacks (python/distribution.mjs)
+        rclpy._native_only.note_distribution_packages(dict(absent or {}))
         attached = True
         exec(compile(source, file, 'exec'), glb)
     except SystemExit as e:
@@ -215,7 +223,15 @@ async function start(msg) {
   pyodide.runPython(RUNNER, { filename: '<colcon-wasm python worker>' });
   const run = pyodide.globals.get('_colcon_wasm_run');
   post({ type: FromWorker.STARTED, prestartedPthreadWorkers: 0, glueFromMemory: false, pyodideSnapshot: fromSnapshot });
-  const result = run(msg.file, msg.source, pyodide.toPy(msg.args), pyodide.toPy(msg.env));
+  let absent = {};
+  try {
+    absent = await loadDistributionPackages(pyodide, {
+      source: msg.source, module: msg.module, indexURL: pyodideIndex(msg), isNode, log,
+    });
+  } catch (e) {
+    log('stderr', runtimeWarning(msg.name, `loading the packages it imports from Pyodide's distribution failed: ${e && e.message ? e.message : e}`));
+  }
+  const result = run(msg.file, msg.source, pyodide.toPy(msg.args), pyodide.toPy(msg.env), pyodide.toPy(absent));
   const [code, reason] = result.toJs();
   result.destroy();
   settle();

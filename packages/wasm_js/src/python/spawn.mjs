@@ -132,6 +132,7 @@ export async function spawnPython(runtime, spec) {
     type: 'start', bus: runtime.bus.handle, pid, name, file, source, args: (spec.args || []).map(String), env,
     types, stdin: stdinPipe && stdinPipe.sab, pythonPath: (spec.pythonPath || []).map(String),
     pythonFiles: isNode ? [] : (spec.pythonFiles || []), snapshot: warm ? null : snapshot, notes, ...where,
+    module: spec.entry ? spec.entry.module : null,
   });
   return proc;
 }

@@ -29,15 +29,34 @@ MODULES = {
 }
 
 
+"""Modules of Pyodide's distribution whose wheels the Pyodide folder lacks (set per node)."""
+DISTRIBUTION = {}
+
+
+def note_distribution_packages(absent):
+    """
+    Remember the imports of Pyodide packages that could not be loaded (python/distribution.mjs).
+
+    :param absent: ``{module: [package, version, wheel file, Pyodide folder]}``
+    """
+    for module, (package, version, wheel, folder) in absent.items():
+        DISTRIBUTION[module] = (
+            package,
+            f"a package of Pyodide's distribution ({package} {version} in the pyodide-lock.json "
+            f'of {folder}), whose wheel {wheel} is not in that folder: give a Pyodide release '
+            'folder that has it with --pyodide DIR (or COLCON_WASM_PYODIDE); nothing is loaded '
+            'from a CDN at run time')
+
+
 class NativeOnlyFinder(importlib.abc.MetaPathFinder):
     """Refuses the modules of :data:`MODULES` with a message that names their package."""
 
     def find_spec(self, fullname, path=None, target=None):
         """Raise ModuleNotFoundError for a known module that is not in the browser."""
         top = fullname.split('.')[0]
-        if top not in MODULES:
+        if top not in MODULES and top not in DISTRIBUTION:
             return None
-        package, why = MODULES[top]
+        package, why = DISTRIBUTION.get(top) or MODULES[top]
         raise ModuleNotFoundError(
             f"No module named '{fullname}' in colcon-wasm's Python: it comes from the "
             f"package '{package}', {why}. Run this node natively, or without this import.",

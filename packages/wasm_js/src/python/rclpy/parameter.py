@@ -3,6 +3,7 @@
 
 """Parameters of a node (rclpy.parameter.Parameter); parameter_service.py serves them."""
 
+import array
 import enum
 
 
@@ -49,6 +50,28 @@ class Parameter:
                     return cls.STRING_ARRAY
             raise TypeError(f"The given value is not one of the allowed types '{value}'.")
 
+        def check(self, parameter_value):
+            """Tell whether a Python value is of this type, as rclpy's ``Type.check``."""
+            arrays = (list, tuple, array.array)
+            checks = {
+                Parameter.Type.NOT_SET: lambda v: v is None,
+                Parameter.Type.BOOL: lambda v: isinstance(v, bool),
+                Parameter.Type.INTEGER: lambda v: isinstance(v, int),
+                Parameter.Type.DOUBLE: lambda v: isinstance(v, float),
+                Parameter.Type.STRING: lambda v: isinstance(v, str),
+                Parameter.Type.BYTE_ARRAY: lambda v: isinstance(v, (list, tuple)) and all(
+                    isinstance(x, bytes) and len(x) == 1 for x in v),
+                Parameter.Type.BOOL_ARRAY: lambda v: isinstance(v, (list, tuple)) and all(
+                    isinstance(x, bool) for x in v),
+                Parameter.Type.INTEGER_ARRAY: lambda v: isinstance(v, arrays) and all(
+                    isinstance(x, int) for x in v),
+                Parameter.Type.DOUBLE_ARRAY: lambda v: isinstance(v, arrays) and all(
+                    isinstance(x, float) for x in v),
+                Parameter.Type.STRING_ARRAY: lambda v: isinstance(v, (list, tuple)) and all(
+                    isinstance(x, str) for x in v),
+            }
+            return checks[self](parameter_value)
+
     def __init__(self, name, type_=None, value=None):
         """Create a parameter; ``type_`` defaults to the value's."""
         if type_ is None:
@@ -75,6 +98,17 @@ class Parameter:
     def __repr__(self):
         """Show name, type and value."""
         return f'Parameter({self._name!r}, {self._type.name}, {self._value!r})'
+
+    def get_parameter_value(self):
+        """Return the value as an rcl_interfaces/msg/ParameterValue."""
+        from rclpy.parameter_service import to_value_msg
+        return to_value_msg(self)
+
+    def to_parameter_msg(self):
+        """Return the parameter as an rcl_interfaces/msg/Parameter."""
+        from rclpy import _messages
+        cls = _messages.message_class('rcl_interfaces/msg/Parameter')
+        return cls(name=self.name, value=self.get_parameter_value())
 
 
 class SetParametersResult:
