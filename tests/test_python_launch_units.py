@@ -20,12 +20,46 @@ from colcon_wasm.launch.python_launch import node_shim
 import pytest
 
 REPO = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(REPO / 'packages' / 'wasm_js' / 'src' / 'python'))
+RCLPY_FOLDER = str(REPO / 'packages' / 'wasm_js' / 'src' / 'python')
 
-from rclpy import _host_link  # noqa: E402, I202
-from rclpy.validate_full_topic_name import validate_full_topic_name  # noqa: E402
-from rclpy.validate_namespace import validate_namespace  # noqa: E402
-from rclpy.validate_node_name import validate_node_name  # noqa: E402
+
+@pytest.fixture(scope='module')
+def rclpy_modules():
+    """
+    Import colcon-wasm's rclpy as the build host does, for this module only.
+
+    It is taken off sys.path and sys.modules again afterwards, so that no other
+    test of the session (third-party clients that probe for an rclpy) meets it.
+    """
+    import importlib
+    sys.path.insert(0, RCLPY_FOLDER)
+    try:
+        yield {name: importlib.import_module(f'rclpy.{name}') for name in (
+            '_host_link', 'validate_full_topic_name', 'validate_namespace', 'validate_node_name')}
+    finally:
+        sys.path.remove(RCLPY_FOLDER)
+        for name in [n for n in sys.modules if n == 'rclpy' or n.startswith('rclpy.')]:
+            del sys.modules[name]
+
+
+@pytest.fixture
+def validate_namespace(rclpy_modules):
+    return rclpy_modules['validate_namespace'].validate_namespace
+
+
+@pytest.fixture
+def validate_node_name(rclpy_modules):
+    return rclpy_modules['validate_node_name'].validate_node_name
+
+
+@pytest.fixture
+def validate_full_topic_name(rclpy_modules):
+    return rclpy_modules['validate_full_topic_name'].validate_full_topic_name
+
+
+@pytest.fixture
+def host_link(rclpy_modules):
+    return rclpy_modules['_host_link']
 
 
 @pytest.mark.parametrize('namespace, message, index', [
@@ -40,7 +74,7 @@ from rclpy.validate_node_name import validate_node_name  # noqa: E402
     ('/a/1b', 'namespace must not have a token that starts with a number', 3),
     ('/' + 'a' * 245, "namespace should not exceed '245'", 244),
 ])
-def test_validate_namespace_as_rmw(namespace, message, index):
+def test_validate_namespace_as_rmw(validate_namespace, namespace, message, index):
     if message is None:
         assert validate_namespace(namespace) is True
         return
@@ -58,7 +92,7 @@ def test_validate_namespace_as_rmw(namespace, message, index):
     ('my-node', "node name must not contain characters other than alphanumerics or '_'", 2),
     ('a' * 256, "node name length should not exceed '255'", 254),
 ])
-def test_validate_node_name_as_rmw(name, message, index):
+def test_validate_node_name_as_rmw(validate_node_name, name, message, index):
     if message is None:
         assert validate_node_name(name) is True
         return
@@ -68,7 +102,8 @@ def test_validate_node_name_as_rmw(name, message, index):
     assert str(info.value).endswith(f"   {' ' * index}^")
 
 
-def test_validate_full_topic_name_for_services_raises_the_service_exception():
+def test_validate_full_topic_name_for_services_raises_the_service_exception(
+        validate_full_topic_name):
     assert validate_full_topic_name('/a/b') is True
     with pytest.raises(Exception) as info:
         validate_full_topic_name('a', is_service=True)
@@ -146,11 +181,11 @@ def test_gui_note_names_the_display_file():
     assert 'its display file a.rviz is not shown headless' in text
 
 
-def test_host_link_wire_values():
-    assert _host_link._to_wire({'a': 2 ** 60, 'b': b'\x01\x02', 'c': [1.5, True, None]}) == \
+def test_host_link_wire_values(host_link):
+    assert host_link._to_wire({'a': 2 ** 60, 'b': b'\x01\x02', 'c': [1.5, True, None]}) == \
         {'a': {'$int': str(2 ** 60)}, 'b': [1, 2], 'c': [1.5, True, None]}
-    answer = _host_link._wrap({'value': {'stamp': {'$int': str(2 ** 62)}, 'ids': [1]},
-                               'id': {'gid': [1, 2]}})
+    answer = host_link._wrap({'value': {'stamp': {'$int': str(2 ** 62)}, 'ids': [1]},
+                              'id': {'gid': [1, 2]}})
     assert answer.value.to_py() == {'stamp': 2 ** 62, 'ids': [1]}
     assert answer.id == {'gid': [1, 2]}
 

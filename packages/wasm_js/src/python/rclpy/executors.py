@@ -24,6 +24,7 @@ threads (rclpy/_threads.py) run.
 """
 
 import inspect
+import sys
 import time
 
 from rclpy._waiting import block
@@ -106,7 +107,10 @@ def sleep(seconds):
         wait_a_while(left)
 
 
-time.sleep = sleep
+# in the Python worker only (Pyodide's own sleep spins a core); the build host's Python,
+# which imports rclpy for a Python launch file, keeps its sleep
+if sys.platform == 'emscripten':
+    time.sleep = sleep
 
 
 class Executor:
