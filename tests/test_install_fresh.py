@@ -71,6 +71,8 @@ NOT_RUN = {
         'launch --play --clock: tests/test_record.py',
     'colcon-wasm serve --foxglove':
         'a Foxglove server on the served pages: tests/test_foxglove_serve.py',
+    'colcon-wasm launch my_robot_description display.launch.py':
+        "Python launch files need Humble's launch and launch_ros: tests/test_python_launch.py",
     'colcon-wasm bag-info ':
         'what a bag holds: tests/test_record.py (a recording, a rosbags bag, a cut file)',
     'colcon-wasm record ':

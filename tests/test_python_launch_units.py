@@ -28,7 +28,7 @@ def rclpy_modules():
     """
     Import colcon-wasm's rclpy as the build host does, for this module only.
 
-    It is taken off sys.path and sys.modules again afterwards, so that no other
+    It is taken off sys.path and sys.modules again after them, so that no other
     test of the session (third-party clients that probe for an rclpy) meets it.
     """
     import importlib

@@ -13,6 +13,7 @@ Usage::
     python3 gui_shim.py PKG/EXE REASON [ARGS ...]
 """
 
+import os
 import signal
 import sys
 
@@ -28,13 +29,20 @@ def note(item, reason, args):
 
 def main(argv=None):
     """Print the note, then wait for SIGINT or SIGTERM; exit 0."""
+    # at once: launch's SIGINT and the terminal's may both come, the second while the first
+    # ends the interpreter, when Python's own handler would be back and kill it with -2
+    for number in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(number, _end)
     argv = sys.argv[1:] if argv is None else argv
     item, reason, args = argv[0], argv[1], argv[2:]
     print(note(item, reason, args), file=sys.stderr, flush=True)
-    for number in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(number, lambda *_: sys.exit(0))
     while True:
         signal.pause()
+
+
+def _end(*_):
+    """End cleanly now, as the window would close; later signals change nothing."""
+    os._exit(0)
 
 
 if __name__ == '__main__':
