@@ -103,15 +103,14 @@ function pyodideIndex(msg) {
 
 /** Import Pyodide's loader from its folder (Node.js) or URL (browser). */
 async function importPyodide(msg) {
+  const indexURL = pyodideIndex(msg);
   if (isNode) {
-    const path = await import('node:path');
     const { pathToFileURL } = await import('node:url');
-    const { loadPyodide } = await import(pathToFileURL(path.join(msg.pyodideDir, 'pyodide.mjs')).href);
-    return { loadPyodide, indexURL: msg.pyodideDir + path.sep };
+    const { loadPyodide } = await import(pathToFileURL(`${indexURL}pyodide.mjs`).href);
+    return { loadPyodide, indexURL };
   }
-  const base = new URL(msg.pyodideUrl, self.location.href).href;
-  const { loadPyodide } = await import(new URL('pyodide.mjs', base).href);
-  return { loadPyodide, indexURL: base };
+  const { loadPyodide } = await import(new URL('pyodide.mjs', indexURL).href);
+  return { loadPyodide, indexURL };
 }
 
 /** The Python side of the start: argv, environment, run the script, report how it ended. */
