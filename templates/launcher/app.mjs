@@ -17,14 +17,18 @@ import { TopicsView } from './views/topics.mjs';
 import { ServicesView } from './views/services.mjs';
 import { ActionsView } from './views/actions.mjs';
 import { ParametersView } from './views/parameters.mjs';
-import { bridgeControl } from './views/bridge.mjs';
-import { zenohControl } from './views/zenoh.mjs';
-import { bagControl } from './views/bag.mjs';
+import { ConnectionsPanel } from './views/connections.mjs';
+import { PlaybackBar } from './views/playback_bar.mjs';
 
 const workspace = JSON.parse(document.getElementById('workspace').textContent);
 const app = document.getElementById('app');
 
-function header(session) {
+/**
+ * The header: what runs here, in one line that never overflows (the
+ * workspace path is cut with an ellipsis, in full in its tooltip); `items`
+ * (the REC chip, the /clock box) come before the status chips.
+ */
+function header(session, items) {
   const isolation = h('span.chip', {},
     h('span.dot'), window.crossOriginIsolated ? 'cross-origin isolated' : 'not isolated');
   isolation.classList.add(window.crossOriginIsolated ? 'ok' : 'bad');
@@ -39,9 +43,7 @@ function header(session) {
     h('h1', {}, 'colcon-wasm launcher'),
     h('span.workspace', { title: workspace.install_base }, workspace.install_base),
     h('span.spacer'),
-    bridgeControl(session),
-    zenohControl(session, workspace),
-    bagControl(session),
+    ...items,
     running,
     h('span.chip', { title: `wasm_js runtime from ${workspace.runtime_origin}` }, h('span.dot'), 'wasm_js'),
     isolation);
@@ -100,11 +102,14 @@ async function main() {
   const banners = h('div.banners');
   const side = h('aside.side');
   const main = h('main.main');
-  setChildren(app, header(session), side, main);
+  // record and replay: the bar at the bottom of the main area, its REC chip and /clock box in the header
+  const playback = new PlaybackBar(session);
+  setChildren(app, header(session, playback.headerItems), side, main);
 
   const processes = new ProcessesView(session);
   const executables = new ExecutablesView(session, workspace);
-  side.append(executables.element, processes.element);
+  const connections = new ConnectionsPanel(session, workspace);
+  side.append(executables.element, processes.element, connections.element);
 
   const views = {
     nodes: new NodesView(session),
@@ -118,9 +123,9 @@ async function main() {
   processes.onSelect = (id) => logs.select(id);
   // the console's input is the log dock's line: show its tab
   executables.onConsole = (id) => logs.select(id);
-  // the main grid: banners and tabs, the visible view, the logs dock
+  // the main grid: banners and tabs, the visible view, the logs dock, the playback bar
   const viewHost = h('div.viewhost', {}, ...Object.values(views).map((v) => v.element));
-  main.append(h('div', {}, banners, nav), viewHost, logs.element);
+  main.append(h('div', {}, banners, nav), viewHost, logs.element, playback.element);
   session.on('graph', (model) => {
     views.nodes.setCount(model.nodes.length);
     views.topics.setCount(model.topics.length);

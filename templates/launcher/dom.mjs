@@ -107,3 +107,27 @@ export function formatAge(ms) {
   if (ms < 60000) return `${(ms / 1000).toFixed(ms < 10000 ? 1 : 0)} s`;
   return `${Math.round(ms / 60000)} min`;
 }
+
+/**
+ * A ROS name (or type) as text with `<wbr>` after each `/` and `_` (and the
+ * `.` of parameter names), so that a narrow table cell wraps it only there,
+ * never inside a word (launcher.css: no word-break in those cells):
+ * h('td.name', {}, breakable('/add_two_ints')). Its textContent is the name.
+ * A name shorter than `whole` characters gets none: it is not wrapped at all.
+ * @param {string} name
+ * @param {number} [whole]
+ * @returns {Array<string|Node>}
+ */
+export function breakable(name, whole = 0) {
+  const text = String(name);
+  if (text.length < whole) return [text];
+  const parts = [];
+  for (const piece of text.split(/(?<=[/_.])/)) {
+    if (parts.length) parts.push(document.createElement('wbr'));
+    parts.push(piece);
+  }
+  return parts;
+}
+
+/** How long a name in a table's first column may be and still never wrap. */
+export const WHOLE_NAME = 24;

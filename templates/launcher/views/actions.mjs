@@ -5,7 +5,7 @@
 
 import { ActionClient } from '/wasm_js/page/ros_clients.mjs';
 import { formatYaml } from '/wasm_js/page/yaml.mjs';
-import { h, setChildren } from '../dom.mjs';
+import { breakable, h, setChildren, WHOLE_NAME } from '../dom.mjs';
 import { MessageForm } from './message_form.mjs';
 
 export class ActionsView {
@@ -28,7 +28,7 @@ export class ActionsView {
   render(model) {
     setChildren(this.table, model.actions.length ? model.actions.map((a) => h(`tr.clickable${this.selected === a.name ? '.selected' : ''}`, {
       dataset: { action: a.name }, onclick: () => this.select(a),
-    }, h('td.name', {}, a.name), h('td.type', {}, a.type), h('td.num', {}, String(a.servers)),
+    }, h('td.name', {}, breakable(a.name, WHOLE_NAME)), h('td.type', {}, breakable(a.type)), h('td.num', {}, String(a.servers)),
     h('td.num', {}, String(a.clients)))) : h('tr', {}, h('td.empty', { colSpan: 4 }, 'No action servers.')));
     if (!this.selected) setChildren(this.detail, h('div.card.note', {}, 'Select an action to send it a goal.'));
   }

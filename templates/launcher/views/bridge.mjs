@@ -1,14 +1,16 @@
 // Copyright 2026 colcon-wasm contributors
 // Licensed under the Apache License, Version 2.0
 
-// The rosbridge connect field of the header: a ws:// URL, Connect /
-// Disconnect, and the bridge's state (what `?rosbridge=ws://...` starts too).
+// The rosbridge connect field of the connections panel (connections.mjs): a
+// ws:// URL, Connect / Disconnect, and the bridge's state (what
+// `?rosbridge=ws://...` starts too).
 
 import { h } from '../dom.mjs';
 
 export function bridgeControl(session) {
   const input = h('input#rosbridge-url', {
-    type: 'text', placeholder: 'ws://robot:9090', size: 22, title: 'a rosbridge v2 server to bridge these nodes to',
+    type: 'text', placeholder: 'ws://robot:9090', title: 'a rosbridge v2 server to bridge these nodes to',
+    'aria-label': 'rosbridge server URL', spellcheck: false,
   });
   const button = h('button#rosbridge-connect', {}, 'Connect');
   const chip = h('span.chip#rosbridge-state', { title: 'rosbridge' }, h('span.dot'), 'rosbridge: off');
@@ -30,5 +32,8 @@ export function bridgeControl(session) {
   input.onkeydown = (e) => { if (e.key === 'Enter') button.onclick(); };
   session.on('bridge', render);
   render();
-  return h('span.rosbridge', {}, input, button, chip);
+  return h('div.connection.rosbridge', {},
+    h('div.connection-head', {}, chip),
+    h('div.connection-row', {}, input, button),
+    h('div.hint', {}, 'bridges these nodes to a rosbridge v2 server (ws://HOST:PORT)'));
 }

@@ -4,7 +4,18 @@
 // The executables of the install space, grouped by package: run any of them
 // with arguments, as often as wanted (each run is a new process).
 
-import { formatBytes, h, splitArgs } from '../dom.mjs';
+import { breakable, formatBytes, h, splitArgs } from '../dom.mjs';
+
+/**
+ * Why the Python buttons are off, under them: its first clause, and the
+ * whole text (with the command that installs Pyodide) one click away.
+ */
+function pythonReason(problem) {
+  const text = problem || 'this serve does not serve Pyodide: start it with --pyodide DIR';
+  const short = text.split(/: |, and /)[0];
+  return h('div.reason#python-reason', { title: text }, `Off: ${short}.`,
+    short === text ? null : h('details', {}, h('summary', {}, 'how to fix'), h('div.mono', {}, text)));
+}
 
 export class ExecutablesView {
   constructor(session, workspace) {
@@ -62,7 +73,8 @@ export class ExecutablesView {
     };
     this.pythonButtons = { buttons: [button, consoleButton], available: !!python.pyodide };
     return h('details.package.python', { open: true }, h('summary', {}, 'Python (rclpy)'),
-      h('div.row', {}, button, args, file), error, h('div.row', {}, consoleButton));
+      h('div.row', {}, button, args, file), error, h('div.row', {}, consoleButton),
+      python.pyodide ? null : pythonReason(python.problem));
   }
 
   row(pkg, exe) {
@@ -91,7 +103,7 @@ export class ExecutablesView {
       title: 'Arguments', onclick: () => { item.classList.toggle('expanded'); args.focus(); },
     }, '⋯');
     item.append(
-      h('div.row', {}, h('span.name', {}, exe.name),
+      h('div.row', {}, h('span.name', {}, breakable(exe.name)),
         exe.python
           ? h('span.size', { title: `Python entry point ${exe.python.module}:${exe.python.function} (Pyodide)` }, 'Python')
           : h('span.size', { title: 'download size (gzip)' }, formatBytes(exe.gzip_size || exe.size)),

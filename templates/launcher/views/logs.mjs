@@ -2,9 +2,11 @@
 // Licensed under the Apache License, Version 2.0
 
 // The log dock: one pane per process (and one for all), severity colours,
-// and a crash report when a process dies. Lines are appended once per frame.
+// and a crash report when a process dies. Lines are appended once per frame;
+// in "all output" they are in the order they were logged (log_order.mjs).
 
 import { h, setChildren } from '../dom.mjs';
+import { insertionIndex, logStamp, mergeByStamp } from './log_order.mjs';
 
 const MAX_LINES = 2000;
 
@@ -100,10 +102,9 @@ export class LogsDock {
       const p = this.session.processes.get(this.current);
       return p ? p.log.map((e) => [p, e]) : [];
     }
-    const all = [];
-    for (const p of this.session.processes.values()) for (const e of p.log) all.push([p, e]);
-    all.sort((a, b) => a[1].seq - b[1].seq);
-    return all.slice(-MAX_LINES);
+    // the last MAX_LINES of each process hold the last MAX_LINES of all
+    const lists = [...this.session.processes.values()].map((p) => p.log.slice(-MAX_LINES).map((e) => [p, e]));
+    return mergeByStamp(lists, ([, e]) => logStamp(e), ([, e]) => e.seq).slice(-MAX_LINES);
   }
 
   renderPane() {
@@ -116,13 +117,22 @@ export class LogsDock {
   }
 
   line(proc, entry) {
-    if (entry.crash) {
-      return h('div.crash', { dataset: { crash: proc.label, proc: proc.label, seq: entry.seq } },
+    const el = entry.crash
+      ? h('div.crash', { dataset: { crash: proc.label, proc: proc.label, seq: entry.seq } },
         h('strong', {}, `✖ ${proc.label} crashed`), entry.text,
-        entry.detail ? h('pre', {}, entry.detail) : null);
-    }
-    return h(`div.logline.${entry.severity}`, { dataset: { proc: proc.label, seq: entry.seq } },
-      this.current === 'all' ? h('span.who', {}, `[${proc.label}]`) : null, entry.text);
+        entry.detail ? h('pre', {}, entry.detail) : null)
+      : h(`div.logline.${entry.severity}`, { dataset: { proc: proc.label, seq: entry.seq } },
+        this.current === 'all' ? h('span.who', {}, `[${proc.label}]`) : null, entry.text);
+    el.logOrder = { stamp: logStamp(entry), proc: proc.id };
+    return el;
+  }
+
+  /** Add a line where it belongs: at the end, or in "all output" before the later-logged lines of others. */
+  place(el) {
+    const lines = this.pane.children;
+    const at = this.current === 'all'
+      ? insertionIndex(lines.length, (i) => lines[i].logOrder, el.logOrder) : lines.length;
+    this.pane.insertBefore(el, lines[at] || null);
   }
 
   schedule() {
@@ -134,9 +144,7 @@ export class LogsDock {
       if (batch.length === 0) return;
       const empty = this.pane.querySelector('.empty');
       if (empty) empty.remove();
-      const frag = document.createDocumentFragment();
-      for (const [p, e] of batch.slice(-MAX_LINES)) frag.append(this.line(p, e));
-      this.pane.append(frag);
+      for (const [p, e] of batch.slice(-MAX_LINES)) this.place(this.line(p, e));
       while (this.pane.childElementCount > MAX_LINES) this.pane.firstElementChild.remove();
       this.scroll();
     });

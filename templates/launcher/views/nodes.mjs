@@ -3,7 +3,7 @@
 
 // Nodes: the live list and, for the selected node, what `ros2 node info` shows.
 
-import { h, setChildren } from '../dom.mjs';
+import { breakable, h, setChildren, WHOLE_NAME } from '../dom.mjs';
 
 export class NodesView {
   constructor(session) {
@@ -26,7 +26,7 @@ export class NodesView {
   render(model) {
     setChildren(this.table, model.nodes.length ? model.nodes.map((n) => h(`tr.clickable${this.selected === n.fqn ? '.selected' : ''}`, {
       dataset: { node: n.fqn }, onclick: () => { this.selected = n.fqn; this.render(this.session.graph); },
-    }, h('td.name', {}, n.fqn), h('td.type', {}, n.process || ''),
+    }, h('td.name', {}, breakable(n.fqn, WHOLE_NAME)), h('td.type', {}, breakable(n.process || '')),
     h('td.num', {}, String(n.publishers.length)), h('td.num', {}, String(n.subscriptions.length)),
     h('td.num', {}, String(n.services.length)))) : h('tr', {}, h('td.empty', { colSpan: 5 }, 'No nodes. Run an executable.')));
     const node = model.nodes.find((n) => n.fqn === this.selected);
@@ -35,7 +35,7 @@ export class NodesView {
       return;
     }
     const section = (title, items) => [h('div.note', { style: { marginTop: '8px' } }, title),
-      items.length ? h('table.list', {}, h('tbody', {}, items.map((e) => h('tr', {}, h('td.name', {}, e.name), h('td.type', {}, e.type)))))
+      items.length ? h('table.list', {}, h('tbody', {}, items.map((e) => h('tr', {}, h('td.name', {}, breakable(e.name, WHOLE_NAME)), h('td.type', {}, breakable(e.type))))))
         : h('div.empty', {}, 'none')];
     setChildren(this.detail, h('div.card', { dataset: { nodeInfo: node.fqn } }, h('h3', {}, node.fqn, node.process ? h('span.type', {}, node.process) : null),
       section('Subscribers', node.subscriptions), section('Publishers', node.publishers),

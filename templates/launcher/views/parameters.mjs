@@ -6,7 +6,7 @@
 
 import { ParameterClient } from '/wasm_js/page/ros_clients.mjs';
 import { parseYaml } from '/wasm_js/page/yaml.mjs';
-import { h, setChildren } from '../dom.mjs';
+import { breakable, h, setChildren, WHOLE_NAME } from '../dom.mjs';
 
 function show(value) {
   if (Array.isArray(value)) return `[${value.map((v) => (typeof v === 'string' ? JSON.stringify(v) : String(v))).join(', ')}]`;
@@ -87,7 +87,7 @@ export class ParametersView {
           }
         };
         input.addEventListener('keydown', (e) => { if (e.key === 'Enter') set(); });
-        return h('tr', {}, h('td.name', {}, p.name), h('td.type', {}, p.type), h('td', {}, input, status),
+        return h('tr', {}, h('td.name', {}, breakable(p.name, WHOLE_NAME)), h('td.type', {}, p.type), h('td', {}, input, status),
           h('td', {}, h('button', { onclick: set }, 'Set')));
       }))));
   }

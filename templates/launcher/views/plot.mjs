@@ -109,7 +109,10 @@ export class Plot {
     }
     for (let s = 0; s <= this.windowSeconds; s += this.windowSeconds <= 10 ? 1 : 5) {
       const xx = Math.round(x(start + s * 1000)) + 0.5;
-      ctx.fillText(`-${this.windowSeconds - s}s`, xx - 10, chh - 6);
+      const label = timeLabel(this.windowSeconds - s);
+      // the last label ends at the right edge, the others are centred on their tick
+      const width = ctx.measureText(label).width;
+      ctx.fillText(label, s === this.windowSeconds ? cw - right - width : xx - width / 2, chh - 6);
     }
     for (const s of this.series.values()) {
       ctx.strokeStyle = s.color;
@@ -141,6 +144,17 @@ export function niceStep(raw) {
   const power = 10 ** Math.floor(Math.log10(raw));
   const f = raw / power;
   return (f < 1.5 ? 1 : f < 3.5 ? 2 : f < 7.5 ? 5 : 10) * power;
+}
+
+/**
+ * The x axis label of a time `secondsAgo` before now: '-5s', and '0s' (never
+ * '-0s') for now.
+ * @param {number} secondsAgo
+ * @returns {string}
+ */
+export function timeLabel(secondsAgo) {
+  const whole = Math.round(secondsAgo);
+  return whole === 0 ? '0s' : `${-whole}s`;
 }
 
 /**

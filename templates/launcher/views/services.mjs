@@ -5,7 +5,7 @@
 // response decoded, the round-trip time).
 
 import { formatYaml } from '/wasm_js/page/yaml.mjs';
-import { h, setChildren } from '../dom.mjs';
+import { breakable, h, setChildren, WHOLE_NAME } from '../dom.mjs';
 import { MessageForm } from './message_form.mjs';
 
 export class ServicesView {
@@ -31,7 +31,7 @@ export class ServicesView {
     const services = model.services.filter((s) => this.showHidden.checked || !s.hidden);
     setChildren(this.table, services.length ? services.map((s) => h(`tr.clickable${this.selected === s.name ? '.selected' : ''}`, {
       dataset: { service: s.name }, onclick: () => this.select(s),
-    }, h('td.name', {}, s.name, s.remote || s.remoteToo ? h('span.type', { title: 'on the rosbridge server' }, ' remote') : null), h('td.type', {}, s.types.join(', ')), h('td.num', {}, String(s.servers)),
+    }, h('td.name', {}, breakable(s.name, WHOLE_NAME), s.remote || s.remoteToo ? h('span.type', { title: 'on the rosbridge server' }, ' remote') : null), h('td.type', {}, breakable(s.types.join(', '))), h('td.num', {}, String(s.servers)),
     h('td.num', {}, String(s.clients)))) : h('tr', {}, h('td.empty', { colSpan: 4 }, 'No services yet.')));
     if (!this.selected) setChildren(this.detail, h('div.card.note', {}, 'Select a service to call it.'));
   }

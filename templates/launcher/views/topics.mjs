@@ -9,7 +9,7 @@
 import { formatYaml } from '/wasm_js/page/yaml.mjs';
 import { formatBandwidth, TopicStats } from '/wasm_js/page/stats.mjs';
 import { imageKind } from '/wasm_js/page/image.mjs';
-import { h, setChildren } from '../dom.mjs';
+import { breakable, h, setChildren, WHOLE_NAME } from '../dom.mjs';
 import { ImageView } from './image_view.mjs';
 import { MessageForm } from './message_form.mjs';
 import { Plot } from './plot.mjs';
@@ -44,7 +44,7 @@ export class TopicsView {
     } else {
       setChildren(this.table, topics.map((t) => h(`tr.clickable${this.selected === t.name ? '.selected' : ''}`, {
         dataset: { topic: t.name }, onclick: () => this.select(t.name),
-      }, h('td.name', {}, t.name, t.remote || t.remoteToo ? h('span.type', { title: 'on the rosbridge server' }, ' remote') : null), h('td.type', {}, t.types.join(', ')),
+      }, h('td.name', {}, breakable(t.name, WHOLE_NAME), t.remote || t.remoteToo ? h('span.type', { title: 'on the rosbridge server' }, ' remote') : null), h('td.type', {}, breakable(t.types.join(', '))),
       h('td.num', {}, String(t.publishers)), h('td.num', {}, String(t.subscribers)))));
     }
     if (this.inspector) this.inspector.update(model.topics.find((t) => t.name === this.selected));
