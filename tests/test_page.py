@@ -5,7 +5,8 @@
 The launcher page in Chromium (playwright-core), against `colcon-wasm serve`.
 
 The demo workspace is built by the real `colcon build --wasm` (real
-Emscripten); every step saves a screenshot under artifacts/screenshots/.
+Emscripten); every step saves a screenshot under artifacts/screenshots/
+(the layout steps one per window width: 1024, 1440 and 2560 px).
 """
 
 import json
@@ -79,8 +80,13 @@ def test_demo_flow_in_the_browser(served_demo):
                  'service-call-returns',
                  'stopping-a-node-updates-the-graph', 'a-crash-is-reported-and-the-others-go-on',
                  'plot-of-a-numeric-topic', 'image-view-of-a-camera-topic',
-                 'echo-keeps-up-with-1-kHz'):
+                 'echo-keeps-up-with-1-kHz', 'all-output-in-the-order-logged'):
         assert name in steps, f'step {name} did not run'
+    # no sideways scrolling from a laptop's width to a wide screen's (a screenshot of each)
+    for width in (1024, 1440, 2560):
+        fits = steps[f'layout-fits-{width}-px']
+        assert fits['scroll_width'] <= width and fits['header_right'] <= width, fits
+    assert '-0s' not in steps['plot-of-a-numeric-topic']['time_axis']
     first = steps['open-with-run-talker-listener']['first_publish_ms']
     warm = steps['reopen-warm-first-publish']['first_publish_ms']
     print(f'page open -> first publish: {first} ms, {warm} ms with warm caches (goal: 1000 ms)')

@@ -9,7 +9,9 @@ downloaded bag is read by the third-party `mcap` + `mcap-ros2-support` and
 `rosbags`, and holds what the page's nodes published. Replay: a bag written
 by `rosbags` is dropped on the page, whose C++ listener hears it through
 Step, seek, Play and Pause. serve's `/bag` (colcon_wasm/server/bag_socket.py)
-does the MCAP side. All on 127.0.0.1, every wait bounded.
+does the MCAP side. All on 127.0.0.1, every wait bounded. The header shows a
+red REC chip while the page records; the playback bar at the bottom shows the
+player's state; screenshots go to artifacts/screenshots/bag/.
 """
 
 import json
@@ -32,6 +34,7 @@ from test_record import mcap_messages  # noqa: E402
 
 GAP_MS = 200
 COUNT = 20
+SCREENSHOTS = Path(__file__).resolve().parents[1] / 'artifacts' / 'screenshots' / 'bag'
 
 
 @pytest.fixture(scope='module')
@@ -44,7 +47,7 @@ def served():
 def _drive(served, **options):
     completed = subprocess.run(
         ['node', str(JS / 'page_bag.mjs'), json.dumps(
-            dict(options, url=served.url, chromium=CHROMIUM))],
+            dict(options, url=served.url, chromium=CHROMIUM, screenshots=str(SCREENSHOTS)))],
         capture_output=True, text=True, timeout=240)
     lines = completed.stdout.strip().splitlines()
     assert lines, f'page_bag.mjs printed nothing: {completed.stderr[-3000:]}'
@@ -58,6 +61,14 @@ def test_record_on_the_page_downloads_the_bag_of_its_nodes(served, tmp_path):
     result = _drive(served, mode='record', out=str(out))
     assert result['suggested'] == 'launcher.mcap', result
     assert re.search(r'launcher\.mcap: \d+ messages', result['chip']), result['chip']
+    rec = result['rec']
+    for seen in (rec['first'], rec['last']):  # while recording: red, in the window, the time
+        assert seen['shown'] and seen['inWindow'], rec
+        assert re.fullmatch(r'REC\d+:\d\d', seen['text']), rec
+        assert seen['background'] == 'rgb(208, 53, 43)', rec  # --red
+    minutes, seconds = re.fullmatch(r'REC(\d+):(\d\d)', rec['last']['text']).groups()
+    assert int(minutes) * 60 + int(seconds) >= 3, rec  # 4 s later
+    assert not rec['after']['shown'], rec  # gone once it stopped
     messages = mcap_messages(out)
     chatter = [d for topic, _, _, d, _ in messages if topic == '/chatter']
     counts = [d.count for d in chatter]
@@ -99,6 +110,25 @@ def test_a_bag_dropped_on_the_page_plays_with_step_seek_and_pause(served, tmp_pa
     assert marks['afterPauseWait'] == marks['afterPause'], marks
     assert marks['end'] == [0, 1, 2] + list(range(10, COUNT)), marks
     assert result['state']['state'] == 'ended', result['state']
+    bar = result['bar']
+    expected = {'opened': 'paused', 'stepped': 'paused', 'playing': 'playing',
+                'paused': 'paused', 'ended': 'ended'}
+    assert {k: (v['state'], v['label']) for k, v in bar.items()} == \
+        {k: (s, s) for k, s in expected.items()}, bar
+    assert {k: v['icon'] for k, v in bar.items()} == {
+        'opened': 'play', 'stepped': 'play', 'playing': 'pause', 'paused': 'play',
+        'ended': 'replay'}, bar
+    assert all(v['iconDrawn'] for v in bar.values()), bar
+    duration = re.fullmatch(r'0\.0 s / (\d+\.\d s)', bar['opened']['position']).group(1)
+    assert bar['ended']['position'] == f'{duration} / {duration}', bar
+    # the position field keeps one line and one width; the bar does not grow
+    assert {v['positionLines'] for v in bar.values()} == {1}, bar
+    assert len({v['positionWidth'] for v in bar.values()}) == 1, bar
+    assert not any(v['positionClipped'] for v in bar.values()), bar
+    assert len({v['barHeight'] for v in bar.values()}) == 1, bar
+    # at 1024 px, the narrowest width the page is made for
+    assert not any(v['barOverflow'] > 0 or v['pageOverflow'] > 0 for v in bar.values()), bar
+    assert not any(v['inHeader'] for v in bar.values()), bar
 
 
 def test_the_page_replay_drives_a_use_sim_time_rclcpp_node_with_clock(tmp_path):

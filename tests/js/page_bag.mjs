@@ -8,10 +8,13 @@
 //
 // mode 'record' {out}: starts the demo talker and camera, clicks Record,
 //   waits 4 s, clicks Stop and saves the download to `out`:
-//   {ok, error, logs: {talker}, chip, result}
+//   {ok, error, logs: {talker}, chip, result, rec: {first, last, after}} (rec: the
+//   header's REC chip as it records and after the stop)
 // mode 'play' {bag}: starts the demo listener, drops `bag` on the page, then
 //   Step ×3, seek to `seekMs`, Play, Pause, Play to the end:
-//   {ok, error, logs: {listener}, marks: {afterSteps, afterPause, afterPauseWait, end}, info}
+//   {ok, error, logs: {listener}, marks: {afterSteps, afterPause, afterPauseWait, end}, info,
+//    bar: {opened, stepped, playing, paused, ended}} (bar: the playback bar at each of those)
+// With `screenshots` (a folder), a screenshot of the page while it records or plays.
 // mode 'clock' {bag, pkg, exe, args, until}: starts pkg/exe args, drops `bag`, ticks
 //   /clock, plays, and waits for a log line matching `until`: {ok, error, logs: {node}}
 
@@ -48,10 +51,40 @@ async function dropBag(file) {
   await page.dispatchEvent('body', 'drop', { dataTransfer: transfer });
   await until('the bag to open', () => !document.querySelector('#bag-player').hidden);
 }
+/** The playback bar as the user sees it: the play button's state and the position field. */
+const barLooks = () => page.evaluate(() => {
+  const position = document.querySelector('#bag-position');
+  const range = document.createRange();
+  range.selectNodeContents(position);
+  const tops = new Set([...range.getClientRects()].map((r) => Math.round(r.top)));
+  const button = document.querySelector('#bag-play');
+  return {
+    state: button.dataset.state, icon: button.dataset.icon, iconDrawn: !!button.querySelector('svg path'), label: document.querySelector('#bag-play-state').textContent,
+    position: position.textContent, positionLines: tops.size, positionWidth: position.getBoundingClientRect().width,
+    positionClipped: position.scrollWidth > position.clientWidth,
+    barHeight: document.querySelector('#playback-bar').getBoundingClientRect().height,
+    barOverflow: document.querySelector('#playback-bar').scrollWidth - document.querySelector('#playback-bar').clientWidth,
+    pageOverflow: document.documentElement.scrollWidth - window.innerWidth,
+    inHeader: !!document.querySelector('header.top #bag-play, header.top #bag-seek'),
+  };
+});
+/** The header's REC chip: shown, its text, inside the window. */
+const recChip = () => page.evaluate(() => {
+  const chip = document.querySelector('header.top #rec-chip');
+  if (!chip) return null;
+  const r = chip.getBoundingClientRect();
+  return { shown: !chip.hidden && r.width > 0, text: chip.textContent, inWindow: r.right <= window.innerWidth,
+    background: getComputedStyle(chip).backgroundColor };
+});
+const shoot = async (name) => {
+  if (!options.screenshots) return;
+  fs.mkdirSync(options.screenshots, { recursive: true });
+  await page.screenshot({ path: path.join(options.screenshots, `${name}.png`) });
+};
 const heard = (id) => logsOf(id).then((lines) => lines.filter((l) => l.includes('I heard: [played')).map((l) => Number(/played (\d+)/.exec(l)[1])));
 
 try {
-  const context = await browser.newContext({ acceptDownloads: true });
+  const context = await browser.newContext({ acceptDownloads: true, viewport: { width: 1024, height: 800 } });
   page = await context.newPage();
   page.on('pageerror', (e) => out.pageErrors.push(String(e)));
   await page.goto(options.url);
@@ -67,7 +100,10 @@ try {
     }, [talker, camera]);
     await page.click('#bag-record');
     await until('recording', () => document.querySelector('#bag-state').textContent.includes('recording'));
+    out.rec = { first: await recChip() };
     await page.waitForTimeout(4000);
+    out.rec.last = await recChip();
+    await shoot('recording');
     const downloading = page.waitForEvent('download', { timeout: 30000 });
     await page.click('#bag-record');
     const download = await downloading;
@@ -75,6 +111,7 @@ try {
     out.suggested = download.suggestedFilename();
     out.logs.talker = await logsOf(talker);
     out.chip = await page.textContent('#bag-state');
+    out.rec.after = await recChip();
   } else if (options.mode === 'clock') {
     const node = await page.evaluate(([p, e, a]) => window.colconWasm.session.startProcess(p, e, a).id,
       [options.pkg, options.exe, options.args]);
@@ -90,27 +127,34 @@ try {
     await dropBag(options.bag);
     out.info = await page.evaluate(() => window.colconWasm.bag.player.info);
     out.chip = await page.textContent('#bag-state');
+    out.bar = { opened: await barLooks() };
     for (let i = 1; i <= 3; i++) {
       await page.click('#bag-step');
       await until(`step ${i} to be heard`, ([id, n]) => window.colconWasm.session.processes.get(id).log.filter((e) => e.text.includes('I heard: [played')).length >= n, [listener, i]);
     }
     await page.waitForTimeout(500);
     out.marks.afterSteps = await heard(listener);
+    out.bar.stepped = await barLooks();
     // seek with the bar, as a user drags it, then play
     await page.$eval('#bag-seek', (el, ms) => { el.value = String(ms); el.dispatchEvent(new Event('change')); }, options.seekMs);
     await page.waitForTimeout(300);
     await page.click('#bag-play');
     await until('two more messages', ([id, n]) => window.colconWasm.session.processes.get(id).log.filter((e) => e.text.includes('I heard: [played')).length >= n, [listener, 5]);
+    out.bar.playing = await barLooks();
+    await shoot('playing');
     await page.click('#bag-play');
     await until('the pause', () => window.colconWasm.bag.player.state.state === 'paused');
     await page.waitForTimeout(400); // what serve sent before it paused
     out.marks.afterPause = await heard(listener);
+    out.bar.paused = await barLooks();
     await page.waitForTimeout(1500);
     out.marks.afterPauseWait = await heard(listener);
     await page.click('#bag-play');
     await until('the end of the bag', () => window.colconWasm.bag.player.state.state === 'ended', null, 30000);
     await page.waitForTimeout(500);
     out.marks.end = await heard(listener);
+    out.bar.ended = await barLooks();
+    await shoot('ended');
     out.logs.listener = await logsOf(listener);
     out.state = await page.evaluate(() => window.colconWasm.bag.player.state);
   }

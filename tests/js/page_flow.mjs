@@ -97,11 +97,79 @@ const RECORD_LOGS = `
   }).observe(document, { childList: true, subtree: true });
 `;
 
+// Records the labels the plot draws on its canvas (its axes).
+const RECORD_PLOT_LABELS = `
+  window.__plotLabels = new Set();
+  const fillText = CanvasRenderingContext2D.prototype.fillText;
+  CanvasRenderingContext2D.prototype.fillText = function (text, ...rest) {
+    if (this.canvas.classList && this.canvas.classList.contains('plot')) window.__plotLabels.add(String(text));
+    return fillText.call(this, text, ...rest);
+  };
+`;
+
+/**
+ * The line breaks inside an element's text, as 'ab' pairs: the character
+ * that ends a line and the one that starts the next.
+ */
+function lineBreaks(page, selector) {
+  return page.evaluate((sel) => {
+    const el = document.querySelector(sel);
+    if (!el) throw new Error(`no ${sel}`);
+    const range = document.createRange();
+    const walker = document.createTreeWalker(el, NodeFilter.SHOW_TEXT);
+    const breaks = [];
+    let previous = null;
+    for (let node = walker.nextNode(); node; node = walker.nextNode()) {
+      for (let i = 0; i < node.length; i++) {
+        range.setStart(node, i);
+        range.setEnd(node, i + 1);
+        const rect = range.getClientRects()[0];
+        if (!rect || rect.width === 0) continue;
+        if (previous && rect.top > previous.top + rect.height / 2) breaks.push(previous.char + node.data[i]);
+        previous = { top: rect.top, char: node.data[i] };
+      }
+    }
+    return breaks;
+  }, selector);
+}
+
+/** The page fits its window: no sideways scrolling, the header and its chips inside it. */
+async function checkLayout(page, width) {
+  await page.setViewportSize({ width, height: 900 });
+  await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+  const m = await page.evaluate(() => {
+    const header = document.querySelector('header.top');
+    const right = (sel) => document.querySelector(sel).getBoundingClientRect().right;
+    const bar = document.querySelector('#playback-bar');
+    return {
+      scrollWidth: document.documentElement.scrollWidth, innerWidth: window.innerWidth,
+      headerRight: header.getBoundingClientRect().right, headerOverflow: header.scrollWidth - header.clientWidth,
+      chips: [...header.querySelectorAll('.chip:not([hidden])')].map((c) => [c.textContent, c.getBoundingClientRect().right]),
+      runningRight: right('#running-chip'), headerHeight: header.getBoundingClientRect().height,
+      barRight: bar.getBoundingClientRect().right, barBottom: bar.getBoundingClientRect().bottom,
+      barOverflow: bar.scrollWidth - bar.clientWidth, innerHeight: window.innerHeight,
+      connections: !!document.querySelector('aside.side #connections #rosbridge-url'),
+      headerFields: document.querySelectorAll('header.top input[type=text], header.top #bag-play').length,
+    };
+  });
+  const problems = [];
+  if (m.scrollWidth > m.innerWidth) problems.push(`the page is ${m.scrollWidth} px wide in a ${m.innerWidth} px window`);
+  if (m.headerRight > m.innerWidth || m.headerOverflow > 0) problems.push(`the header ends at ${m.headerRight} px, ${m.headerOverflow} px overflow`);
+  for (const [text, right] of m.chips) if (right > m.innerWidth) problems.push(`the chip '${text}' ends at ${right} px`);
+  if (m.headerHeight > 60) problems.push(`the header is ${m.headerHeight} px tall: it wrapped`);
+  if (m.barRight > m.innerWidth || m.barOverflow > 0 || m.barBottom > m.innerHeight) problems.push(`the playback bar does not fit: ${JSON.stringify(m)}`);
+  if (!m.connections) problems.push('the rosbridge field is not in the sidebar\'s connections panel');
+  if (m.headerFields) problems.push('connection fields or the bag player are still in the header');
+  if (problems.length) throw new Error(problems.join('; '));
+  return { scroll_width: m.scrollWidth, header_right: Math.round(m.headerRight) };
+}
+
 async function demoFlow() {
   const context = await browser.newContext({ viewport: { width: 1440, height: 900 } });
   const page = await context.newPage();
   page.on('pageerror', (e) => pageErrors.push(e.message));
   await page.addInitScript(RECORD_LOGS);
+  await page.addInitScript(RECORD_PLOT_LABELS);
 
   await step(page, 'open-with-run-talker-listener', async () => {
     await page.goto(`${options.url}?run=demo_nodes/talker&run=demo_nodes/listener`);
@@ -155,6 +223,26 @@ async function demoFlow() {
     await waitForLog(page, 'add_two_ints_server', /Incoming request: a: 2 b: 40/);
   });
 
+  // talker, listener and the service run: the page at a laptop's, a desktop's and a wide screen's width
+  for (const width of [1024, 1440, 2560]) {
+    await step(page, `layout-fits-${width}-px`, async () => {
+      const fits = await checkLayout(page, width);
+      // names wrap at / _ . only: /add_two_ints is short enough not to wrap at all
+      const name = await lineBreaks(page, 'tr[data-service="/add_two_ints"] td.name');
+      if (name.length) throw new Error(`/add_two_ints wraps at ${JSON.stringify(name)}`);
+      const pieces = await page.locator('tr[data-service="/add_two_ints"] td.type')
+        .evaluate((td) => td.innerHTML.split('<wbr>'));
+      if (pieces.join('|') !== 'demo_|interfaces/|srv/|AddTwoInts') {
+        throw new Error(`the type's <wbr> are not after each / and _: ${pieces.join('|')}`);
+      }
+      const type = await lineBreaks(page, 'tr[data-service="/add_two_ints"] td.type');
+      const inWord = type.filter((pair) => !/^[/_. ,]/.test(pair));
+      if (inWord.length) throw new Error(`demo_interfaces/srv/AddTwoInts wraps inside a word: ${JSON.stringify(type)}`);
+      return { ...fits, type_breaks: type };
+    });
+  }
+  await page.setViewportSize({ width: 1440, height: 900 });
+
   await step(page, 'stopping-a-node-updates-the-graph', async () => {
     await page.locator('.proc[data-proc^="talker"] button.stop').click();
     await tab(page, 'nodes');
@@ -198,7 +286,10 @@ async function demoFlow() {
       return coloured;
     });
     if (inked < 100) throw new Error(`the plot drew ${inked} blue pixels: no sine line`);
-    return { plotted_pixels: inked };
+    const labels = await page.evaluate(() => [...window.__plotLabels].filter((l) => /s$/.test(l)));
+    if (!labels.includes('0s') || !labels.includes('-10s')) throw new Error(`the time axis reads ${JSON.stringify(labels)}`);
+    if (labels.some((l) => /^-0(\.0*)?s$/.test(l))) throw new Error(`the time axis has -0s: ${JSON.stringify(labels)}`);
+    return { plotted_pixels: inked, time_axis: labels };
   });
 
   await step(page, 'image-view-of-a-camera-topic', async () => {
@@ -251,6 +342,30 @@ async function demoFlow() {
     if (result.rate < 800) throw new Error(`echo received ${result.rate.toFixed(0)} msg/s of a 1 kHz topic`);
     if (result.max_frame_gap_ms > 250) throw new Error(`the page froze for ${result.max_frame_gap_ms.toFixed(0)} ms`);
     return { echo_rate_hz: Math.round(result.rate), max_frame_gap_ms: Math.round(result.max_frame_gap_ms) };
+  });
+
+  await step(page, 'all-output-in-the-order-logged', async () => {
+    // the lines of every process, by their ROS time stamps ([INFO] [seconds] [node]: ...);
+    // first as the tab draws them, then as they come in
+    const outOfOrder = () => page.evaluate(() => {
+      const bad = [];
+      let previous = null;
+      for (const line of document.querySelectorAll('.logpane > *')) {
+        const m = /^\s*\[[A-Z]+\]\s*\[(\d+\.\d+)\]/.exec(line.querySelector('.who') ? line.lastChild.textContent : line.textContent);
+        if (!m) { previous = null; continue; }  // a line without a stamp took the time it came in
+        const stamp = Number(m[1]);
+        if (previous && stamp < previous.stamp) bad.push(`${previous.text} | ${line.textContent}`);
+        previous = { stamp, text: line.textContent };
+      }
+      return { bad, lines: document.querySelectorAll('.logpane .logline').length };
+    });
+    await page.locator('.logtabs button[data-log="all"]').click();
+    const drawn = await outOfOrder();
+    await page.waitForTimeout(2500);
+    const live = await outOfOrder();
+    if (drawn.bad.length || live.bad.length) throw new Error(`lines out of time order: ${JSON.stringify([...drawn.bad, ...live.bad].slice(0, 5))}`);
+    if (drawn.lines < 10) throw new Error(`only ${drawn.lines} lines in all output`);
+    return { lines: live.lines };
   });
 
   await step(page, 'logs-of-one-process', async () => {

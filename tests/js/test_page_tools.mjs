@@ -197,3 +197,29 @@ test('subscriptionQos hears every publisher, as ros2 topic echo chooses', async 
   assert.equal(subscriptionQos([latched]).durability, 'transient_local');
   assert.equal(subscriptionQos([latched, reliable]).durability, 'volatile');
 });
+
+test('the log dock merges the processes\' lines by their ROS time stamps', async () => {
+  const { insertionIndex, logStamp, mergeByStamp } = await import('../../templates/launcher/views/log_order.mjs');
+  const origin = 1_700_000_000_000;  // performance.timeOrigin, ms
+  // a stamped line takes its stamp; a plain one, or a stamp of another clock, when it came in
+  assert.equal(logStamp({ text: '[INFO] [1700000001.250000] [talker]: Publishing', time: 1300 }, origin), 1_700_000_001_250);
+  assert.equal(logStamp({ text: 'starting demo_nodes/talker', time: 1300 }, origin), origin + 1300);
+  assert.equal(logStamp({ text: '[INFO] [12.5] [sim]: a sim time stamp', time: 1300 }, origin), origin + 1300);
+  // the talker's line reached the page after the listener's, but was logged first
+  const talker = [{ seq: 1, stamp: 5 }, { seq: 4, stamp: 10 }, { seq: 5, stamp: 20 }];
+  const listener = [{ seq: 2, stamp: 3 }, { seq: 3, stamp: 11 }, { seq: 6, stamp: 20 }];
+  const merged = mergeByStamp([talker, listener], (e) => e.stamp);
+  assert.deepEqual(merged.map((e) => e.seq), [2, 1, 4, 3, 5, 6]);  // equal stamps: the order they came in
+  // one process' lines keep their order whatever their stamps say
+  const odd = [{ seq: 1, stamp: 30 }, { seq: 2, stamp: 1 }];
+  assert.deepEqual(mergeByStamp([odd, [{ seq: 3, stamp: 10 }]], (e) => e.stamp).map((e) => e.seq), [3, 1, 2]);
+  // a new line goes before the later-logged lines of other processes, never before its own
+  const shown = [{ stamp: 1, proc: 'a' }, { stamp: 5, proc: 'b' }, { stamp: 7, proc: 'a' }, { stamp: 9, proc: 'b' }];
+  const at = (i) => shown[i];
+  assert.equal(insertionIndex(shown.length, at, { stamp: 10, proc: 'a' }), 4);
+  assert.equal(insertionIndex(shown.length, at, { stamp: 6, proc: 'a' }), 3);  // before b's 9, after its own 7
+  assert.equal(insertionIndex(shown.length, at, { stamp: 6, proc: 'c' }), 2);
+  assert.equal(insertionIndex(shown.length, at, { stamp: 4, proc: 'b' }), 4);  // after its own 9
+  assert.equal(insertionIndex(shown.length, at, { stamp: 0, proc: 'c' }), 0);
+  assert.equal(insertionIndex(shown.length, at, { stamp: 0, proc: 'c' }, 2), 2);  // looks back 2 lines at most
+});
