@@ -24,6 +24,10 @@ export class ConnectionsPanel {
       if (link && !dot.linked) this.element.open = true;
       dot.linked = Boolean(link);
     };
+    // opened at the foot of a long sidebar: scroll it into view
+    this.element.addEventListener('toggle', () => {
+      if (this.element.open) this.element.scrollIntoView({ block: 'nearest' });
+    });
     session.on('bridge', (b) => show(rosbridge, 'rosbridge', b, b && b.state === 'connected'));
     session.on('zenoh', (g) => show(zenoh, 'zenoh', g, g && g.state === 'connected'));
   }
