@@ -48,6 +48,8 @@ _INPUT_FOLDERS = ('colcon_wasm', 'recipes', 'toolchains', 'patches',
 
 """colcon-wasm files that do not change what a build produces."""
 _NOT_INPUTS = ('colcon_wasm/cli/', 'colcon_wasm/blasm.py',
+               # the page's pinned libraries (three.js, urdf-loader): run time only
+               'colcon_wasm/vendor',
                'colcon_wasm/doctor.py', 'colcon_wasm/launch/',
                'colcon_wasm/server/', 'templates/launcher/',
                # record and replay, Foxglove schemas: run time only

@@ -17,6 +17,10 @@
                            ``colcon_wasm/types.json``
 ``/fs/<n>/<path>[/]``      read-only views of the install bases for the
                            programs: listings and files (``views.py``)
+``/vendor/<lib>/<path>``   the page's third-party libraries (three.js,
+                           urdf-loader), pinned in ``colcon_wasm/vendor.py``
+``/package/<pkg>/<path>``  a file of a package's share folder, as
+                           ``package://<pkg>/<path>`` names it (URDF meshes)
 ``/zenoh/<file>``          the Zenoh gateway's zenoh-pico module
                            (``share/zenoh_wasm_gateway/zenoh_session.mjs`` and
                            ``.wasm``), when the install space has it
@@ -38,6 +42,8 @@ from colcon_wasm.server.files import Refused
 from colcon_wasm.server.files import resolve_under
 from colcon_wasm.server.views import InstallViews
 from colcon_wasm.server.views import URL_PREFIX as VIEWS_PREFIX
+from colcon_wasm.vendor import vendor_dir
+from colcon_wasm.vendor import VendorError
 import jinja2
 
 PAGE_TEMPLATE = 'index.html'
@@ -290,6 +296,18 @@ class Site:
                 return Content(body=value, content_type='application/json')
             return Content(path=value, content_type='application/octet-stream',
                            precompressed=False)
+        if head == 'vendor' and len(rest) >= 2:
+            try:
+                folder = vendor_dir()
+            except VendorError as e:
+                raise Refused(503, str(e)) from None
+            return Content(path=resolve_under(folder, rest))
+        if head == 'package' and len(rest) >= 2:
+            share = self.install_space.share_folders().get(rest[0])
+            if share is None:
+                raise Refused(404, f"not found: package '{rest[0]}' has no share folder in "
+                              'the install space (package:// names a built package)')
+            return Content(path=resolve_under(share, rest[1:]))
         if head == 'zenoh' and len(rest) == 1 and rest[0] in GATEWAY_FILES:
             folder = self._gateway_dir()
             if folder is None:

@@ -17,6 +17,7 @@ import { TopicsView } from './views/topics.mjs';
 import { ServicesView } from './views/services.mjs';
 import { ActionsView } from './views/actions.mjs';
 import { ParametersView } from './views/parameters.mjs';
+import { SceneView } from './views/scene/scene_view.mjs';
 import { ConnectionsPanel } from './views/connections.mjs';
 import { PlaybackBar } from './views/playback_bar.mjs';
 
@@ -117,7 +118,10 @@ async function main() {
     services: new ServicesView(session),
     actions: new ActionsView(session),
     parameters: new ParametersView(session),
+    '3d': new SceneView(session, workspace),
   };
+  // for the browser console and the tests: colconWasm.views['3d'].displays
+  window.colconWasm.views = views;
   const { nav, show } = tabs(views);
   const logs = new LogsDock(session);
   processes.onSelect = (id) => logs.select(id);
@@ -189,6 +193,12 @@ async function main() {
   const zenoh = new URLSearchParams(location.search).get('zenoh');
   if (zenoh) {
     session.connectZenoh(zenoh).catch((e) => banners.append(h('div.banner.warn#zenoh-error', {}, `?zenoh=${zenoh}: ${e.message}`)));
+  }
+  // ?rviz=package://PKG/FILE.rviz opens the 3D view with that configuration
+  const rviz = new URLSearchParams(location.search).get('rviz');
+  if (rviz) {
+    show('3d');
+    views['3d'].openRvizUrl(rviz).catch((e) => banners.append(h('div.banner.warn', {}, `?rviz=${rviz}: ${e.message}`)));
   }
   document.body.dataset.state = 'ready';
 }

@@ -389,13 +389,14 @@ export class Session {
 
   /**
    * Subscribe to a topic: onBatch([{bytes, time, seq}]). Returns {close()} at
-   * once. The QoS matches the topic's publishers (as ros2 topic echo does).
+   * once. The QoS matches the topic's publishers (as ros2 topic echo does),
+   * unless one is given.
    */
-  subscribe(topic, type, onBatch) {
+  subscribe(topic, type, onBatch, qos = null) {
     let seq = 0;
     let closed = false;
     const entry = this.graph.topics.find((t) => t.name === topic);
-    const qos = subscriptionQos(entry ? entry.publisherQos : []);
+    qos ||= subscriptionQos(entry ? entry.publisherQos : []);
     const pending = this.tools.subscribe({ topic, type, qos }, (messages) => {
       if (closed) return;
       const now = performance.now();
