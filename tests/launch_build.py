@@ -45,3 +45,15 @@ def upstream_examples():
     from humble_build import unpacked_source
     return unpacked_source(control_snapshot(), 'humble-control-src') / 'ros2' / 'launch_ros' / \
         'ros2launch' / 'examples'
+
+
+"""The robot demo of the docs (demo/robot/demo_robot: an arm, its motion, an .rviz file)."""
+ROBOT_DEMO = {'demo_robot': REPO / 'demo' / 'robot' / 'demo_robot'}
+
+
+def robot_demo_build():
+    """Build (or reuse) demo/robot on the launch overlay (robot_state_publisher, launch_ros)."""
+    underlay = launch_build()
+    return humble_build(
+        up_to=('demo_robot',), skip=(), extra=ROBOT_DEMO,
+        colcon_args=('--wasm-link-opt-level', '1'), underlay=underlay, snapshot=False)

@@ -117,8 +117,52 @@ def test_100k_point_cloud_is_drawn_and_the_page_answers_clicks(result):
     assert len(cloud['clicks']) >= 3, cloud
 
 
+def test_log_dock_splitter_gives_the_canvas_room(result):
+    before, after = result['checks']['splitter']['before'], result['checks']['splitter']['after']
+    assert after['dock'] < before['dock'] - 80, result['checks']['splitter']
+    assert after['canvas'] > before['canvas'] + 80, result['checks']['splitter']
+
+
 def test_no_sideways_scrolling_at_developer_widths(result):
     for width, seen in result['stats']['widths'].items():
         assert seen['scrollWidth'] <= seen['innerWidth'], (width, seen)
         assert seen['canvas']['width'] > 300 and seen['canvas']['height'] > 300, (width, seen)
     assert not result['pageErrors'], result['pageErrors']
+
+
+def robot_demo_link(install):
+    """Return the query of the robot demo's one link (docs/launcher.md) for an install space."""
+    from urllib.parse import quote
+    params = install / 'demo_robot' / 'share' / 'demo_robot' / 'config' / 'robot_state_publisher.yaml'
+    runs = [f'robot_state_publisher/robot_state_publisher --ros-args --params-file {params}',
+            'demo_robot/arm_motion']
+    return '?' + '&'.join(f'run={quote(r)}' for r in runs) + \
+        '&rviz=' + quote('package://demo_robot/rviz/demo.rviz')
+
+
+def test_robot_demo_link_shows_the_arm_moving_in_3d():
+    from launch_build import robot_demo_build
+    reason = browser_skip_reason()
+    if reason:
+        pytest.skip(reason)
+    build = robot_demo_build()
+    SCREENSHOTS.mkdir(parents=True, exist_ok=True)
+    with ServedPage(build.install) as served:
+        completed = subprocess.run(
+            ['node', str(JS / 'page_robot_demo.mjs'), json.dumps({
+                'url': served.url + robot_demo_link(build.install), 'chromium': CHROMIUM,
+                'screenshot': str(SCREENSHOTS / 'robot_demo_1440.png')})],
+            capture_output=True, text=True, timeout=300)
+    lines = completed.stdout.strip().splitlines()
+    assert lines, f'page_robot_demo.mjs printed nothing: {completed.stderr[-3000:]}'
+    out = json.loads(lines[-1])
+    assert out['ok'], json.dumps(out, indent=1)[-6000:]
+    checks = out['checks']
+    print('robot demo:', json.dumps(checks))
+    assert checks['status']['RobotModel'] == {'level': 'ok', 'text': 'demo_arm: 6 links'}
+    assert checks['status']['Laser'] == {'level': 'ok', 'text': '2160 points'}
+    assert checks['meshes'] == 2, 'the upper arm and the gripper are STL meshes of demo_robot'
+    assert set(checks['frames']) >= {'base_link', 'turret', 'upper_arm', 'forearm', 'gripper',
+                                     'laser_frame'}
+    moved = sum((a - b) ** 2 for a, b in zip(checks['gripperBefore'], checks['gripperAfter']))
+    assert moved > 1e-4, 'the arm moves: arm_motion swings its joints'

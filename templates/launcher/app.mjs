@@ -18,6 +18,7 @@ import { ServicesView } from './views/services.mjs';
 import { ActionsView } from './views/actions.mjs';
 import { ParametersView } from './views/parameters.mjs';
 import { SceneView } from './views/scene/scene_view.mjs';
+import { dockSplitter } from './views/splitter.mjs';
 import { ConnectionsPanel } from './views/connections.mjs';
 import { PlaybackBar } from './views/playback_bar.mjs';
 
@@ -129,6 +130,7 @@ async function main() {
   executables.onConsole = (id) => logs.select(id);
   // the main grid: banners and tabs, the visible view, the logs dock, the playback bar
   const viewHost = h('div.viewhost', {}, ...Object.values(views).map((v) => v.element));
+  logs.element.prepend(dockSplitter(logs.element, `colcon-wasm:dock:${workspace.install_base}`));
   main.append(h('div', {}, banners, nav), viewHost, logs.element, playback.element);
   session.on('graph', (model) => {
     views.nodes.setCount(model.nodes.length);

@@ -205,6 +205,19 @@ try {
       points: cloud.count, status: cloud.status() };
   });
 
+  // the log dock's splitter: dragged down, the 3D canvas grows; the height is kept on reload
+  const before = await page.evaluate(() => ({ dock: document.querySelector('section.logs').getBoundingClientRect().height,
+    canvas: window.colconWasm.views['3d'].scene.canvas.getBoundingClientRect().height }));
+  const handle = await page.locator('.dock-splitter').boundingBox();
+  await page.mouse.move(handle.x + handle.width / 2, handle.y + 3);
+  await page.mouse.down();
+  await page.mouse.move(handle.x + handle.width / 2, handle.y + 120, { steps: 5 });
+  await page.mouse.up();
+  await new Promise((r) => setTimeout(r, 300));
+  const after = await page.evaluate(() => ({ dock: document.querySelector('section.logs').getBoundingClientRect().height,
+    canvas: window.colconWasm.views['3d'].scene.canvas.getBoundingClientRect().height }));
+  checks.splitter = { before, after };
+
   // screenshots at three widths
   stats.widths = {};
   for (const width of [1024, 1440, 2560]) {

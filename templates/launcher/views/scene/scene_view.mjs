@@ -226,6 +226,7 @@ export class SceneView {
   }
 
   tick() {
+    if (this.setCount) this.setCount(this.displays.length);
     if (this.element.hidden) return;
     this.renderFrames();
     this.list.refreshStatus();
