@@ -13,7 +13,12 @@ artifacts/screenshots/3d/.
 """
 
 import json
+import os
+from pathlib import Path
+import signal
 import subprocess
+import sys
+import time
 
 from corpus_build import corpus_build
 from humble_build import REPO
@@ -133,7 +138,8 @@ def test_no_sideways_scrolling_at_developer_widths(result):
 def robot_demo_link(install):
     """Return the query of the robot demo's one link (docs/launcher.md) for an install space."""
     from urllib.parse import quote
-    params = install / 'demo_robot' / 'share' / 'demo_robot' / 'config' / 'robot_state_publisher.yaml'
+    share = install / 'demo_robot' / 'share' / 'demo_robot'
+    params = share / 'config' / 'robot_state_publisher.yaml'
     runs = [f'robot_state_publisher/robot_state_publisher --ros-args --params-file {params}',
             'demo_robot/arm_motion']
     return '?' + '&'.join(f'run={quote(r)}' for r in runs) + \
@@ -166,3 +172,44 @@ def test_robot_demo_link_shows_the_arm_moving_in_3d():
                                      'laser_frame'}
     moved = sum((a - b) ** 2 for a, b in zip(checks['gripperBefore'], checks['gripperAfter']))
     assert moved > 1e-4, 'the arm moves: arm_motion swings its joints'
+
+
+def test_python_launch_robot_is_seen_in_the_page_over_rosbridge(tmp_path):
+    """`colcon-wasm launch demo_robot robot.launch.py --rosbridge`: its rviz2 note's link works."""
+    from launch_build import robot_demo_build
+    from zenoh_peers import free_port
+    reason = browser_skip_reason()
+    if reason:
+        pytest.skip(reason)
+    build = robot_demo_build()
+    port = free_port()
+    output = tmp_path / 'launch.txt'
+    with open(output, 'w') as sink:
+        launch = subprocess.Popen(
+            [str(Path(sys.executable).parent / 'colcon-wasm'), 'launch', '--install-base',
+             str(build.install), 'demo_robot', 'robot.launch.py', '--rosbridge',
+             f'127.0.0.1:{port}', '--duration', '150'], stdout=sink, stderr=subprocess.STDOUT,
+            start_new_session=True)
+    try:
+        deadline = time.monotonic() + 90
+        while 'rosbridge server listening' not in output.read_text():
+            assert launch.poll() is None and time.monotonic() < deadline, output.read_text()
+            time.sleep(0.2)
+        with ServedPage(build.install) as served:
+            completed = subprocess.run(
+                ['node', str(JS / 'page_robot_demo.mjs'), json.dumps({
+                    'url': f'{served.url}?rosbridge=ws://127.0.0.1:{port}'
+                           '&rviz=package://demo_robot/rviz/demo.rviz',
+                    'chromium': CHROMIUM,
+                    'screenshot': str(SCREENSHOTS / 'robot_launch_rosbridge_1440.png')})],
+                capture_output=True, text=True, timeout=300)
+    finally:
+        # Ctrl-C, as a terminal sends it: to the launch's process group
+        os.killpg(launch.pid, signal.SIGINT)
+        launch.wait(60)
+    note = output.read_text()
+    out = json.loads(completed.stdout.strip().splitlines()[-1])
+    assert out['ok'], json.dumps(out, indent=1)[-6000:] + note[-3000:]
+    assert out['checks']['status']['RobotModel'] == {'level': 'ok', 'text': 'demo_arm: 6 links'}
+    assert out['checks']['status']['Laser'] == {'level': 'ok', 'text': '2160 points'}
+    assert 'its display file package://demo_robot/rviz/demo.rviz: the page shows it' in note

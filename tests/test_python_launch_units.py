@@ -179,6 +179,9 @@ def test_gui_note_names_the_display_file():
     text = gui_shim.note('rviz2/rviz2', 'RViz is a Qt and OpenGL program', ['-d', 'a.rviz'])
     assert text.startswith('[colcon-wasm] rviz2/rviz2 is not started: RViz is a Qt and OpenGL')
     assert 'its display file a.rviz is not shown headless' in text
+    text = gui_shim.note('rviz2/rviz2', 'RViz', ['-d', '/tmp/p/share/demo_robot/rviz/demo.rviz'])
+    assert 'its display file package://demo_robot/rviz/demo.rviz: the page shows it' in text
+    assert '/?rviz=package://demo_robot/rviz/demo.rviz' in text
 
 
 def test_host_link_wire_values(host_link):

@@ -18,12 +18,28 @@ import signal
 import sys
 
 
+def package_uri(path):
+    """Return ``package://PKG/REL`` for a file ``.../share/PKG/REL`` of a share folder, or None."""
+    parts = str(path).split('/')
+    for i in range(len(parts) - 2, 0, -1):
+        if parts[i - 1] == 'share' and parts[i] and i + 1 < len(parts):
+            return f"package://{parts[i]}/{'/'.join(parts[i + 1:])}"
+    return None
+
+
 def note(item, reason, args):
     """Return the line that says the program is not started, and what its file was."""
     text = (f'[colcon-wasm] {item} is not started: {reason}, with no WebAssembly build; '
             'the launch goes on without it')
     if '-d' in args[:-1]:
-        text += f" (its display file {args[args.index('-d') + 1]} is not shown headless)"
+        display = args[args.index('-d') + 1]
+        uri = package_uri(display)
+        if uri:
+            # the page's 3D view reads .rviz files (docs/launcher.md)
+            text += (f' (its display file {uri}: the page shows it, colcon-wasm serve '
+                     f'then /?rviz={uri}, with ?rosbridge= of launch --rosbridge)')
+        else:
+            text += f' (its display file {display} is not shown headless)'
     return text
 
 

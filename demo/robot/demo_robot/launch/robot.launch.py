@@ -1,7 +1,7 @@
 # Copyright 2026 colcon-wasm contributors
 # Licensed under the Apache License, Version 2.0
 
-"""The robot demo, as a ROS 2 launch file: the arm's URDF, robot_state_publisher, its motion, rviz2."""
+"""The robot demo as a ROS 2 launch file: robot_state_publisher with the URDF, arm_motion, rviz2."""
 
 import os
 
@@ -25,6 +25,7 @@ def generate_launch_description():
              parameters=[{'robot_description': robot_description}], output='screen'),
         Node(package='demo_robot', executable='arm_motion',
              parameters=[{'rate': LaunchConfiguration('rate')}], output='screen'),
-        Node(package='rviz2', executable='rviz2', condition=IfCondition(LaunchConfiguration('rviz')),
+        Node(package='rviz2', executable='rviz2',
+             condition=IfCondition(LaunchConfiguration('rviz')),
              arguments=['-d', os.path.join(share, 'rviz', 'demo.rviz')]),
     ])
