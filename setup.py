@@ -10,9 +10,9 @@ wheel carries them and an installed colcon-wasm fetches nothing at run time.
 Everything else is in pyproject.toml.
 """
 
-import importlib.util
 import os
 from pathlib import Path
+import sys
 
 from setuptools import setup
 from setuptools.command.build_py import build_py
@@ -21,12 +21,10 @@ HERE = Path(__file__).resolve().parent
 
 
 def _vendor_module():
-    """Load colcon_wasm/vendor.py alone (colcon-wasm itself is not installed yet)."""
-    spec = importlib.util.spec_from_file_location(
-        'colcon_wasm_vendor', HERE / 'colcon_wasm' / 'vendor.py')
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    """Import colcon_wasm/vendor.py from the source tree (colcon-wasm is not installed yet)."""
+    sys.path.insert(0, str(HERE))
+    from colcon_wasm import vendor
+    return vendor
 
 
 class BuildPyWithVendor(build_py):

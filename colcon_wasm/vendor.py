@@ -12,8 +12,9 @@ that an installed colcon-wasm never fetches anything at run time. A source
 checkout (an editable install, the tests) unpacks the same files into the
 cache folder instead, on first use (:func:`vendor_dir`).
 
-This module uses the standard library only: ``setup.py`` loads it by path,
-before colcon-wasm or its dependencies are installed.
+This module uses the standard library only (and colcon_wasm/error.py,
+which does too): ``setup.py`` imports it from the source tree, before
+colcon-wasm or its dependencies are installed.
 """
 
 import base64
@@ -28,6 +29,8 @@ import tempfile
 import urllib.error
 import urllib.request
 
+from colcon_wasm.error import ColconWasmError
+
 REGISTRY = 'https://registry.npmjs.org'
 
 """Per library: its npm version, the tarball's sha512 (npm's `integrity`),
@@ -39,7 +42,7 @@ LIBRARIES = json.loads((Path(__file__).resolve().parent / 'vendor_pins.json').re
 COMPLETE = '.complete'
 
 
-class VendorError(Exception):
+class VendorError(ColconWasmError):
     """A pinned library that could not be downloaded or does not match its pin."""
 
 

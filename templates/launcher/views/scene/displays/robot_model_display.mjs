@@ -34,6 +34,9 @@ export class RobotModelDisplay extends Display {
   onMessages(values) {
     const text = values[values.length - 1].data;
     if (text === this.description) return;
+    // for bench/page: from the description's arrival to the first frame drawn with every mesh
+    this.receivedAt = performance.now();
+    this.firstFrameAt = null;
     this.description = text;
     this.build(text);
   }
@@ -45,9 +48,11 @@ export class RobotModelDisplay extends Display {
     this.parseError = null;
     const loader = new URDFLoader();
     loader.packages = (pkg) => `/package/${pkg}`;
+    this.pendingMeshes = 0;
     loader.loadMeshCb = (url, manager, material, done) => {
-      loadMeshUrl(url, material).then((obj) => { done(obj); this.ctx.requestRender(); },
-        (e) => { this.meshErrors.push(e.message); done(null, e); this.ctx.requestRender(); });
+      this.pendingMeshes++;
+      loadMeshUrl(url, material).then((obj) => { this.pendingMeshes--; done(obj); this.ctx.requestRender(); },
+        (e) => { this.pendingMeshes--; this.meshErrors.push(e.message); done(null, e); this.ctx.requestRender(); });
     };
     let robot;
     try {
@@ -85,6 +90,9 @@ export class RobotModelDisplay extends Display {
     }
     this.missing = missing;
     this.frameError = null;
+    if (this.links.size && !this.firstFrameAt && !this.pendingMeshes && !missing.length) {
+      this.firstFrameAt = performance.now();
+    }
   }
 
   status() {
