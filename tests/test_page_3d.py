@@ -48,6 +48,17 @@ def _yellow(rgb):
     return min(rgb[0], rgb[1]) > 100 and rgb[2] < 0.6 * min(rgb[0], rgb[1])
 
 
+def _drive(script, options, timeout=300, note=None):
+    """Run a tests/js page driver with its options; return its JSON result, asserted ok."""
+    completed = subprocess.run(['node', str(JS / script), json.dumps(options)],
+                               capture_output=True, text=True, timeout=timeout)
+    lines = completed.stdout.strip().splitlines()
+    assert lines, f'{script} printed nothing: {completed.stderr[-3000:]}'
+    out = json.loads(lines[-1])
+    assert out['ok'], json.dumps(out, indent=1)[-6000:] + (note()[-3000:] if note else '')
+    return out
+
+
 @pytest.fixture(scope='module')
 def result(tmp_path_factory):
     reason = browser_skip_reason()
@@ -56,16 +67,10 @@ def result(tmp_path_factory):
     build = corpus_build()
     SCREENSHOTS.mkdir(parents=True, exist_ok=True)
     with ServedPage(build.install) as served:
-        completed = subprocess.run(
-            ['node', str(JS / 'page_3d.mjs'), json.dumps({
-                'url': served.url, 'chromium': CHROMIUM, 'urdf': str(DATA / 'demo_arm.urdf'),
-                'rviz': str(DATA / 'demo_arm.rviz'), 'screenshots': str(SCREENSHOTS),
-                'userDataDir': str(tmp_path_factory.mktemp('chromium'))})],
-            capture_output=True, text=True, timeout=400)
-    lines = completed.stdout.strip().splitlines()
-    assert lines, f'page_3d.mjs printed nothing: {completed.stderr[-3000:]}'
-    out = json.loads(lines[-1])
-    assert out['ok'], json.dumps(out, indent=1)[-6000:]
+        out = _drive('page_3d.mjs', {
+            'url': served.url, 'chromium': CHROMIUM, 'urdf': str(DATA / 'demo_arm.urdf'),
+            'rviz': str(DATA / 'demo_arm.rviz'), 'screenshots': str(SCREENSHOTS),
+            'userDataDir': str(tmp_path_factory.mktemp('chromium'))}, timeout=400)
     print('page_3d stats:', json.dumps(out['stats']))
     return out
 
@@ -154,15 +159,9 @@ def test_robot_demo_link_shows_the_arm_moving_in_3d():
     build = robot_demo_build()
     SCREENSHOTS.mkdir(parents=True, exist_ok=True)
     with ServedPage(build.install) as served:
-        completed = subprocess.run(
-            ['node', str(JS / 'page_robot_demo.mjs'), json.dumps({
-                'url': served.url + robot_demo_link(build.install), 'chromium': CHROMIUM,
-                'screenshot': str(SCREENSHOTS / 'robot_demo_1440.png')})],
-            capture_output=True, text=True, timeout=300)
-    lines = completed.stdout.strip().splitlines()
-    assert lines, f'page_robot_demo.mjs printed nothing: {completed.stderr[-3000:]}'
-    out = json.loads(lines[-1])
-    assert out['ok'], json.dumps(out, indent=1)[-6000:]
+        out = _drive('page_robot_demo.mjs', {
+            'url': served.url + robot_demo_link(build.install), 'chromium': CHROMIUM,
+            'screenshot': str(SCREENSHOTS / 'robot_demo_1440.png')})
     checks = out['checks']
     print('robot demo:', json.dumps(checks))
     assert checks['status']['RobotModel'] == {'level': 'ok', 'text': 'demo_arm: 6 links'}
@@ -196,20 +195,17 @@ def test_python_launch_robot_is_seen_in_the_page_over_rosbridge(tmp_path):
             assert launch.poll() is None and time.monotonic() < deadline, output.read_text()
             time.sleep(0.2)
         with ServedPage(build.install) as served:
-            completed = subprocess.run(
-                ['node', str(JS / 'page_robot_demo.mjs'), json.dumps({
-                    'url': f'{served.url}?rosbridge=ws://127.0.0.1:{port}'
-                           '&rviz=package://demo_robot/rviz/demo.rviz',
-                    'chromium': CHROMIUM,
-                    'screenshot': str(SCREENSHOTS / 'robot_launch_rosbridge_1440.png')})],
-                capture_output=True, text=True, timeout=300)
+            out = _drive('page_robot_demo.mjs', {
+                'url': f'{served.url}?rosbridge=ws://127.0.0.1:{port}'
+                       '&rviz=package://demo_robot/rviz/demo.rviz',
+                'chromium': CHROMIUM,
+                'screenshot': str(SCREENSHOTS / 'robot_launch_rosbridge_1440.png')},
+                note=output.read_text)
     finally:
         # Ctrl-C, as a terminal sends it: to the launch's process group
         os.killpg(launch.pid, signal.SIGINT)
         launch.wait(60)
     note = output.read_text()
-    out = json.loads(completed.stdout.strip().splitlines()[-1])
-    assert out['ok'], json.dumps(out, indent=1)[-6000:] + note[-3000:]
     assert out['checks']['status']['RobotModel'] == {'level': 'ok', 'text': 'demo_arm: 6 links'}
     assert out['checks']['status']['Laser'] == {'level': 'ok', 'text': '2160 points'}
     assert 'its display file package://demo_robot/rviz/demo.rviz: the page shows it' in note

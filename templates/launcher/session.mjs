@@ -92,6 +92,8 @@ export class Session {
   }
 
   refreshGraph(raw) {
+    // the runtime's own graph, the tools' endpoints included (the 3D view's feeds read it)
+    this.rawGraph = raw;
     const hidden = this.zenoh ? [this.zenoh.pid] : [];
     this.graph = mergeRemote(mergeRemote(graphModel(raw, { toolsPid: this.tools ? this.tools.pid : undefined, hiddenPids: hidden }), this.bridge), this.zenoh);
     this.emit('graph', this.graph);

@@ -114,6 +114,8 @@ try {
   await page.evaluate(() => { window.joint = Math.PI / 2; });
   await until(() => { const f = window.colconWasm.views['3d'].tf.frames.get('arm'); return f && Math.abs(f.pose.q[2] - Math.SQRT1_2) < 1e-3; }, null, 'the arm turned by 90 degrees');
   checks.at90 = await colorsAt([armAt0, armAt90, base]);
+  // the table is redrawn twice a second
+  await until(() => document.querySelectorAll('.tf-tree tbody tr').length >= 2, null, 'the TF tree table', 5000).catch(() => {});
   checks.tfTree = await page.evaluate(() => [...document.querySelectorAll('.tf-tree tbody tr')].map((r) => r.dataset.frame));
 
   // markers: a green cube, then DELETEALL

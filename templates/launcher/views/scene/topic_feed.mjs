@@ -40,8 +40,8 @@ export class TopicFeed {
     const entry = (model.topics || []).find((t) => t.name === this.topic);
     // the page's own publishers (the publish form, the pose tools) are left
     // out of the graph the views show; rviz hears them, and so does this
-    const runtime = this.session.runtime;
-    const raw = runtime ? (runtime.graph().topics || []).find((t) => t.name === this.topic) : null;
+    const rawGraph = this.session.rawGraph;
+    const raw = rawGraph ? (rawGraph.topics || []).find((t) => t.name === this.topic) : null;
     const publishers = raw ? raw.publishers.length : entry ? entry.publishers.length : 0;
     const offered = (entry && entry.types) || (raw && raw.types) || [];
     const type = offered.find((t) => this.types.includes(t)) || (offered.length ? null : this.types[0]);

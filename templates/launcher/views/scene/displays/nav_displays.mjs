@@ -41,6 +41,17 @@ class FramedDisplay extends Display {
     if (this.frameId !== null) this.place(this.frame, this.frameId);
   }
 
+  /** Replace what is drawn by one arrow per pose, in a frame. */
+  showArrows(frameId, poses) {
+    this.clear();
+    this.frameId = frameId;
+    for (const p of poses) {
+      const a = arrow(this.color, this.size);
+      applyPose(a, poseOf(p));
+      this.frame.add(a);
+    }
+  }
+
   clear() {
     for (const c of [...this.frame.children]) {
       this.frame.remove(c);
@@ -115,11 +126,7 @@ export class PoseDisplay extends FramedDisplay {
 
   onMessages(values) {
     const msg = values[values.length - 1];
-    this.clear();
-    this.frameId = msg.header.frame_id;
-    const a = arrow(this.color, this.size);
-    applyPose(a, poseOf(msg.pose));
-    this.frame.add(a);
+    this.showArrows(msg.header.frame_id, [msg.pose]);
   }
 }
 
@@ -132,13 +139,7 @@ export class PoseArrayDisplay extends FramedDisplay {
 
   onMessages(values) {
     const msg = values[values.length - 1];
-    this.clear();
-    this.frameId = msg.header.frame_id;
-    for (const p of msg.poses) {
-      const a = arrow(this.color, this.size);
-      applyPose(a, poseOf(p));
-      this.frame.add(a);
-    }
+    this.showArrows(msg.header.frame_id, msg.poses);
   }
 }
 
