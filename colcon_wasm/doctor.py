@@ -6,14 +6,41 @@
 import importlib.metadata
 import os
 import re
+import shlex
 import shutil
 import subprocess
+import tempfile
 
 from colcon_wasm.error import ColconWasmError
 from colcon_wasm.toolchain import find_emscripten
 
 """Node.js major version the runtime needs (growable SharedArrayBuffer)."""
 MINIMUM_NODE = 20
+
+"""
+CMake version the build needs: the cmake_minimum_required of the packages
+colcon-wasm builds first (packages/wasm_cpp, packages/wasm_js) and README.md's
+(ament_cmake itself asks for 3.5; the toolchain files need nothing newer).
+"""
+MINIMUM_CMAKE = (3, 16)
+
+"""Native C++ compilers looked for on PATH when CXX is unset, in CMake's order."""
+CXX_NAMES = ('c++', 'g++', 'clang++')
+
+"""What the C++ compiler check builds and runs (C++17 and its library) and prints."""
+CXX17_PROGRAM = """\
+#include <cstdio>
+#include <optional>
+#include <string_view>
+#include <utility>
+
+int main() {
+  auto [name, value] = std::pair<std::string_view, std::optional<int>>{"c++", 17};
+  std::printf("%.*s%d\\n", static_cast<int>(name.size()), name.data(), value.value_or(0));
+  return 0;
+}
+"""
+CXX17_OUTPUT = 'c++17'
 
 """Python distributions colcon-wasm needs at build time: (name, why)."""
 PYTHON_REQUIREMENTS = (
@@ -67,6 +94,113 @@ def _run_version(command):
     except (OSError, subprocess.SubprocessError):
         return None
     return (completed.stdout or completed.stderr).strip()
+
+
+def check_cmake():
+    """
+    Check for CMake >= MINIMUM_CMAKE, found as colcon-cmake finds it.
+
+    colcon-cmake runs ``$CMAKE_COMMAND`` when it is set, else ``cmake`` on PATH.
+    """
+    need = '.'.join(str(n) for n in MINIMUM_CMAKE)
+    fix = (f'install CMake {need} or newer: `sudo apt-get install -y cmake` '
+           '(or `pip install cmake`), or set CMAKE_COMMAND to its path')
+    configured = os.environ.get('CMAKE_COMMAND')
+    if configured:
+        cmake = shutil.which(configured)
+        if not cmake:
+            return Check('CMake', False,
+                         f'CMAKE_COMMAND={configured} is no program', fix)
+    else:
+        cmake = shutil.which('cmake')
+        if not cmake:
+            return Check('CMake', False,
+                         'no `cmake` on PATH (and CMAKE_COMMAND is unset)', fix)
+    text = _run_version([cmake, '--version']) or ''
+    match = re.search(r'version ((\d+)\.(\d+)\S*)', text)
+    if not match:
+        return Check('CMake', False,
+                     f"'{cmake} --version' printed no version", fix)
+    if (int(match.group(2)), int(match.group(3))) < MINIMUM_CMAKE:
+        return Check('CMake', False,
+                     f'{match.group(1)} at {cmake}, need {need} or newer', fix)
+    return Check('CMake', True, f'{match.group(1)} at {cmake}')
+
+
+def find_cxx():
+    """
+    Return the native C++ compiler as ``(command, None)``, or ``(None, why)``.
+
+    As CMake looks for a native build's compiler: ``$CXX`` when it is set (a
+    program, maybe followed by flags: ``command`` is its words, the program
+    resolved on PATH), else the first of :data:`CXX_NAMES` on PATH.
+    """
+    configured = os.environ.get('CXX', '').strip()
+    if configured:
+        try:
+            words = shlex.split(configured)
+        except ValueError as e:
+            return None, f'CXX={configured} cannot be split into words ({e})'
+        program = shutil.which(words[0]) if words else None
+        if not program:
+            return None, f'CXX={configured} names no program'
+        return [program] + words[1:], None
+    for name in CXX_NAMES:
+        program = shutil.which(name)
+        if program:
+            return [program], None
+    return None, f'CXX is unset and no {", ".join(CXX_NAMES)} on PATH'
+
+
+def _first_lines(text, count=5):
+    lines = [line.strip() for line in text.splitlines() if line.strip()]
+    more = ' | ...' if len(lines) > count else ''
+    return ' | '.join(lines[:count]) + more
+
+
+def check_cxx():
+    """
+    Check for a native C++ compiler that builds and runs a C++17 program (optional).
+
+    ``colcon build --wasm`` compiles with Emscripten alone; the native
+    ``colcon build`` beside it, scripts/demo.sh and the tests need this one.
+    The program (:data:`CXX17_PROGRAM`) is compiled, linked and run in a
+    temporary folder; a failure reports the compiler's own message.
+    """
+    fix = ('`sudo apt-get install -y g++` (the native `colcon build` and the tests '
+           'need it), or set CXX to a C++17 compiler')
+    command, why = find_cxx()
+    if command is None:
+        return Check('C++ compiler', False, why, fix, required=False)
+    name = ' '.join(command)
+    try:
+        version = subprocess.run(command + ['--version'], capture_output=True,
+                                 text=True, timeout=60)
+        lines = version.stdout.strip().splitlines()
+        label = lines[0] if version.returncode == 0 and lines else 'unknown version'
+        with tempfile.TemporaryDirectory(prefix='colcon-wasm-doctor-') as folder:
+            source = os.path.join(folder, 'cxx17.cpp')
+            program = os.path.join(folder, 'cxx17')
+            with open(source, 'w', encoding='utf-8') as f:
+                f.write(CXX17_PROGRAM)
+            built = subprocess.run(command + ['-std=c++17', source, '-o', program],
+                                   capture_output=True, text=True, timeout=60)
+            if built.returncode != 0:
+                message = _first_lines(built.stderr or built.stdout) or 'no message'
+                return Check('C++ compiler', False,
+                             f'{name} failed to build a C++17 program '
+                             f'(exit {built.returncode}): {message}', fix, required=False)
+            ran = subprocess.run([program], capture_output=True, text=True, timeout=60)
+    except (OSError, subprocess.SubprocessError) as e:
+        return Check('C++ compiler', False, f'{name}: {e}', fix, required=False)
+    if ran.returncode != 0 or ran.stdout.strip() != CXX17_OUTPUT:
+        message = _first_lines(ran.stderr) or 'no message'
+        return Check('C++ compiler', False,
+                     f'the C++17 program {name} built does not run here (exit '
+                     f'{ran.returncode}, printed {ran.stdout.strip()!r}, not '
+                     f'{CXX17_OUTPUT!r}): {message}', fix, required=False)
+    return Check('C++ compiler', True, f'{label} at {name} (C++17 builds and runs)',
+                 required=False)
 
 
 def check_node():
@@ -138,5 +272,6 @@ def check_pyodide():
 
 def run_checks(emscripten_option=None):
     """Run every check, in the order printed."""
-    return [check_emscripten(emscripten_option), check_node(),
-            check_chromium(), check_pyodide()] + check_python_requirements()
+    return [check_emscripten(emscripten_option), check_cmake(), check_cxx(),
+            check_node(), check_chromium(), check_pyodide()] + \
+        check_python_requirements()

@@ -19,8 +19,8 @@ def test_subcommands_are_entry_points():
 def test_doctor_reports_every_check():
     result = subprocess.run([tool('colcon-wasm'), 'doctor'],
                             capture_output=True, text=True)
-    for name in ('Emscripten', 'Node.js', 'Chromium', 'Python: colcon-core',
-                 'Python: empy'):
+    for name in ('Emscripten', 'CMake', 'C++ compiler', 'Node.js', 'Chromium',
+                 'Python: colcon-core', 'Python: empy'):
         assert name in result.stdout, name
     failed = [c for c in doctor.run_checks() if c.required and not c.ok]
     assert result.returncode == (1 if failed else 0), result.stdout

@@ -8,7 +8,7 @@ from colcon_wasm.doctor import run_checks
 
 
 class DoctorCommand(CliExtensionPoint):
-    """Check Emscripten, Node.js, Chromium and the Python dependencies."""
+    """Check Emscripten, CMake, a C++ compiler, Node.js, Chromium and the Python dependencies."""
 
     def add_arguments(self, *, parser):  # noqa: D102
         parser.add_argument(
