@@ -61,13 +61,20 @@ def read_launch_file(path):
 class Loader:
     """Walk launch entities and collect NodeProcesses."""
 
-    def __init__(self, install_space=None, environ=None):
-        """Create a loader; ``install_space`` resolves ``$(find-pkg-share)``."""
+    def __init__(self, install_space=None, environ=None, *, listing=False):
+        """
+        Create a loader; ``install_space`` resolves ``$(find-pkg-share)``.
+
+        :param listing: collect the declared arguments (``declared``) only: a
+          required one that is not given reads as empty, and no choice is checked
+        """
         self.install_space = install_space
         self.environ = environ
+        self.listing = listing
         self.processes = []
         self.loads = []
         self.include_stack = []
+        self.declared = []
 
     def _find_package(self, name, where):
         if self.install_space is None:
@@ -146,12 +153,19 @@ class Loader:
     def _arg(self, entity, context):
         name = self._text(entity, 'name', context, optional=False)
         default = self._text(entity, 'default', context)
-        entity.get('description')
+        description = entity.get('description') or ''
         choices = [self._text(c, 'value', context, optional=False)
                    for c in entity.get_list('choice')]
         for choice in entity.get_list('choice'):
             choice.check_complete()
         entity.check_complete()
+        if all(a['name'] != name for a in self.declared):
+            self.declared.append({'name': name, 'default': default,
+                                  'description': description,
+                                  'choices': choices, 'conditional': False})
+        if self.listing:
+            context.configurations.setdefault(name, '' if default is None else default)
+            return
         if name not in context.configurations:
             if default is None:
                 raise LaunchError(
@@ -538,3 +552,17 @@ def load_launch_file(path, arguments=None, *, install_space=None, environ=None):
     :raises LaunchError: naming the file and line of the problem
     """
     return Loader(install_space, environ).load(Path(path), dict(arguments or {}))
+
+
+def declared_arguments(path, *, install_space=None, environ=None):
+    """
+    Return the arguments an XML or YAML launch file declares (its includes' too).
+
+    Each is ``{name, default, description, choices, conditional}``; ``default``
+    is None for a required one.
+
+    :raises LaunchError: naming the file and line of the problem
+    """
+    loader = Loader(install_space, environ, listing=True)
+    loader.load(Path(path), {})
+    return loader.declared

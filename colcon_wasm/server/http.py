@@ -7,8 +7,9 @@ Every response carries the headers that make the page cross-origin isolated
 (``SharedArrayBuffer`` needs them): COOP ``same-origin``, COEP
 ``require-corp`` and CORP ``same-origin``.  GET and HEAD only; no directory
 listing; HTTP/1.1 keep-alive; one thread per connection. WebSockets:
-``/rosbridge`` (serve --rosbridge, relay_http.py) and ``/bag`` (the page's
-record and replay, bag_socket.py), whose recordings are ``/bag/files/...``.
+``/rosbridge`` (serve --rosbridge, relay_http.py), ``/bag`` (the page's
+record and replay, bag_socket.py), whose recordings are ``/bag/files/...``,
+and ``/launch`` (the page's launch files, launch_socket.py).
 """
 
 import errno
@@ -30,6 +31,8 @@ from colcon_wasm.server.files import CompressionCache
 from colcon_wasm.server.files import content_type
 from colcon_wasm.server.files import Refused
 from colcon_wasm.server.files import split_url_path
+from colcon_wasm.server.launch_socket import LAUNCH_PATH
+from colcon_wasm.server.launch_socket import LaunchService
 
 logger = colcon_logger.getChild(__name__)
 
@@ -88,6 +91,10 @@ class LauncherRequestHandler(BaseHTTPRequestHandler):
         if path == BAG_PATH:
             from colcon_wasm.server.relay_http import upgrade  # the page's record and replay
             upgrade(self, self.server.bags, same_origin=True, path=BAG_PATH)
+            return
+        if path == LAUNCH_PATH:
+            from colcon_wasm.server.relay_http import upgrade  # the page's launch files
+            upgrade(self, self.server.launches, same_origin=True, path=LAUNCH_PATH)
             return
         if path.startswith(FILES_PREFIX):
             self._send_recording(path)
@@ -221,6 +228,10 @@ class LauncherServer(ThreadingHTTPServer):
         self.compression = CompressionCache()
         #: the page's record and replay (/bag), bag_socket.py
         self.bags = BagService(site.install_space)
+        #: the page's launch files (/launch), launch_socket.py
+        from colcon_wasm import resources
+        self.launches = LaunchService(
+            site.install_space, resources.path('packages') / 'wasm_js' / 'src' / 'python')
         if ':' in host:
             self.address_family = socket.AF_INET6
         try:
@@ -242,6 +253,7 @@ class LauncherServer(ThreadingHTTPServer):
     def server_close(self):
         """Close the socket and remove the recordings and uploads of this serve."""
         super().server_close()
+        self.launches.close()
         self.bags.close()
 
     def handle_error(self, request, client_address):

@@ -40,6 +40,8 @@ from colcon_wasm.launch.zenoh import GATEWAY_MODULE
 from colcon_wasm.launch.zenoh import GATEWAY_PACKAGE
 from colcon_wasm.server.files import Refused
 from colcon_wasm.server.files import resolve_under
+from colcon_wasm.server.launch_socket import launch_files
+from colcon_wasm.server.launch_socket import LAUNCH_PATH
 from colcon_wasm.server.views import InstallViews
 from colcon_wasm.server.views import URL_PREFIX as VIEWS_PREFIX
 from colcon_wasm.vendor import vendor_dir
@@ -158,6 +160,8 @@ class Site:
             # ?zenoh=ws/HOST:PORT: the gateway's module, or null without zenoh_wasm_gateway
             'zenoh': ({'module': '/zenoh/' + GATEWAY_MODULE}
                       if self._gateway_dir(installed) else None),
+            # the packages' launch files, started from the page (launch_socket.py)
+            'launch': {'socket': LAUNCH_PATH, 'files': launch_files(self.install_space)},
             # what every program started by the page sees (install_view.py)
             'mounts': self.views.mounts(),
             'environment': {AMENT_PREFIX_PATH: ':'.join(ament_prefixes(self.views.bases))},

@@ -10,6 +10,7 @@
 import { h, setChildren, splitArgs } from './dom.mjs';
 import { Session } from './session.mjs';
 import { ExecutablesView } from './views/executables.mjs';
+import { LaunchFilesView } from './views/launch_files.mjs';
 import { ProcessesView } from './views/processes.mjs';
 import { LogsDock } from './views/logs.mjs';
 import { NodesView } from './views/nodes.mjs';
@@ -110,7 +111,11 @@ async function main() {
 
   const processes = new ProcessesView(session);
   const executables = new ExecutablesView(session, workspace);
+  const launchFiles = new LaunchFilesView(session, workspace);
+  launchFiles.setEnabled(false);
   const connections = new ConnectionsPanel(session, workspace);
+  // a robot stack starts from its launch files: they come first, when the packages have any
+  if ((workspace.launch?.files || []).length) side.append(launchFiles.element);
   side.append(executables.element, processes.element, connections.element);
 
   const views = {
@@ -128,6 +133,12 @@ async function main() {
   processes.onSelect = (id) => logs.select(id);
   // the console's input is the log dock's line: show its tab
   executables.onConsole = (id) => logs.select(id);
+  // a launch shows its log; rviz2 -d FILE.rviz of a launch is the 3D view with that file
+  launchFiles.onLaunch = (proc) => processes.select(proc.id);
+  launchFiles.onRviz = (uri) => {
+    show('3d');
+    views['3d'].openRvizUrl(uri).catch((e) => banners.append(h('div.banner.warn', {}, `rviz2 -d ${uri}: ${e.message}`)));
+  };
   // the main grid: banners and tabs, the visible view, the logs dock, the playback bar
   const viewHost = h('div.viewhost', {}, ...Object.values(views).map((v) => v.element));
   logs.element.prepend(dockSplitter(logs.element, `colcon-wasm:dock:${workspace.install_base}`));
@@ -163,6 +174,7 @@ async function main() {
     return;
   }
   executables.setEnabled(true);
+  launchFiles.setEnabled(true);
   const requests = runRequests();
   for (const request of requests) {
     const found = workspace.packages.find((p) => p.name === request.pkg)

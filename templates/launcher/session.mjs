@@ -163,19 +163,27 @@ export class Session {
 
   runningCount() {
     let n = 0;
-    for (const p of this.processes.values()) if (p.state === 'starting' || p.state === 'running') n++;
+    for (const p of this.processes.values()) {
+      if (p.kind !== 'launch' && (p.state === 'starting' || p.state === 'running')) n++;
+    }
     return n;
   }
 
-  /** Start an executable; several instances of one are numbered like ros2 launch does. */
-  startProcess(pkg, exe, args) {
+  /**
+   * Start an executable; several instances of one are numbered like ros2 launch does.
+   * `extra` is what a launch file gives a process (./launch_run.mjs): `env` over the install's,
+   * `files` written into its file system (launch_ros' --params-file files), `launch` (the
+   * launch's entry it belongs to), `onLog` ({stream, text}: its output) and `onExit`, called
+   * once with its end.
+   */
+  startProcess(pkg, exe, args, extra = {}) {
     const info = this.workspace.packages.find((p) => p.name === pkg)?.executables.find((e) => e.name === exe);
     if (!info) throw new Error(`there is no executable ${pkg}/${exe} in this install space`);
-    if (info.python) return this.startPythonEntryPoint(pkg, info, args);
+    if (info.python) return this.startPythonEntryPoint(pkg, info, args, extra);
     const id = this.nextId++;
     const proc = {
       id, pkg, exe, args: [...args], label: `${exe}-${id}`, state: 'starting', log: [], exit: null, handle: null,
-      started: performance.now(),
+      started: performance.now(), launch: extra.launch || null, onExit: extra.onExit || null,
     };
     this.processes.set(id, proc);
     this.addLog(proc, { severity: 'SYSTEM', text: `starting ${pkg}/${exe} ${args.join(' ')}`.trim() });
@@ -193,15 +201,37 @@ export class Session {
       args: proc.args,
       name: proc.label,
       ...view,
-      onLog: ({ stream, text }) => this.addLog(proc, { stream, severity: severityOf(stream, text), text }),
+      env: { ...view.env, ...(extra.env || {}) },
+      ...(extra.files && Object.keys(extra.files).length ? { files: extra.files } : {}),
+      onLog: ({ stream, text }) => {
+        this.addLog(proc, { stream, severity: severityOf(stream, text), text });
+        if (extra.onLog) extra.onLog({ stream, text });
+      },
       onExit: (exit) => this.exited(proc, exit),
       stdin: true, // an open standard input, typed into from the log dock
     });
     return this.track(proc, started);
   }
 
+  /**
+   * List a launch file's run (./launch_run.mjs) as a process of its own: its
+   * log is launch's output, its Stop button stops the launch.
+   * @param {{stop: function(): Promise<void>}} handle
+   */
+  addLaunch(pkg, file, args, handle) {
+    const id = this.nextId++;
+    const proc = {
+      id, pkg, exe: file, args: [...args], label: `launch ${file}`, state: 'running', log: [], exit: null, handle,
+      started: performance.now(), kind: 'launch', noStdin: true,
+    };
+    this.processes.set(id, proc);
+    this.emit('processes');
+    return proc;
+  }
+
   /** Follow a spawn: the process runs once it resolves, or crashed with its error. */
   track(proc, started) {
+    proc.starting = started;
     started.then((handle) => {
       proc.handle = handle;
       if (proc.state === 'starting') proc.state = 'running';
@@ -231,14 +261,14 @@ export class Session {
    * from the install space's Python packages, fetched from serve at their real
    * paths, and runs `sys.exit(function())` as the installed script does.
    */
-  startPythonEntryPoint(pkg, info, args) {
+  startPythonEntryPoint(pkg, info, args, extra = {}) {
     const python = this.workspace.python || {};
     return this.spawnPythonProcess(pkg, info.name, args, `starting ${pkg}/${info.name} (Python) ${args.join(' ')}`,
       async () => ({
         file: info.file, pythonPath: python.path || [], pythonFiles: await this.pythonFiles(), stdin: true,
         // a console_scripts entry point, or a script a CMake package installed (run as __main__)
         ...(info.python.script ? { source: await this.pythonScript(info) } : { entry: info.python }),
-      }));
+      }), extra);
   }
 
   /** The text of a Python script of the install space (served at its executable's URL). */
@@ -253,12 +283,12 @@ export class Session {
    * (file, source or entry, ...); Pyodide, the types, the environment and the
    * log and exit handlers are every Python process' of the page.
    */
-  spawnPythonProcess(pkg, exe, args, startText, spec) {
+  spawnPythonProcess(pkg, exe, args, startText, spec, extra = {}) {
     const python = this.workspace.python || {};
     const id = this.nextId++;
     const proc = {
       id, pkg, exe, args: [...args], label: `${exe}-${id}`, state: 'starting', log: [], exit: null, handle: null,
-      started: performance.now(),
+      started: performance.now(), launch: extra.launch || null, onExit: extra.onExit || null,
     };
     this.processes.set(id, proc);
     this.addLog(proc, { severity: 'SYSTEM', text: startText.trim() });
@@ -269,9 +299,13 @@ export class Session {
       const own = await spec();
       const { spawnPython } = await import('/wasm_js/python/spawn.mjs');
       return spawnPython(this.runtime, {
-        ...own, args: proc.args, name: proc.label, env: this.installView().env, pyodideUrl: python.pyodide,
+        ...own, args: proc.args, name: proc.label, env: { ...this.installView().env, ...(extra.env || {}) },
+        pyodideUrl: python.pyodide,
         types: this.typeDocuments || [],
-        onLog: ({ stream, text }) => this.addLog(proc, { stream, severity: severityOf(stream, text), text }),
+        onLog: ({ stream, text }) => {
+          this.addLog(proc, { stream, severity: severityOf(stream, text), text });
+          if (extra.onLog) extra.onLog({ stream, text });
+        },
         onExit: (exit) => this.exited(proc, exit),
       });
     })();
@@ -317,6 +351,7 @@ export class Session {
   exited(proc, exit) {
     if (proc.state === 'exited' || proc.state === 'crashed' || proc.state === 'stopped') return;
     proc.exit = exit || {};
+    if (proc.onExit) proc.onExit(proc.exit);
     if (proc.stopRequested && !proc.exit.crashed) {
       proc.state = 'stopped';
       this.addLog(proc, { severity: 'SYSTEM', text: `${proc.label} stopped` });

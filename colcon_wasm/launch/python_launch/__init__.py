@@ -75,12 +75,14 @@ class HostLaunch:
     # the empty plan the host starts with: launch starts the processes
     plan = LaunchPlan()
 
-    def prepare(self, description, install_space, bases, *, runtime_python):
+    def prepare(self, description, install_space, bases, *, runtime_python, ready_pipe=True):
         """
         Make the host prefix, and give the host plan its socket.
 
         :param description: the host plan (``runner.host_plan``), changed in place
         :param runtime_python: the folder of colcon-wasm's ``rclpy`` (the runtime's ``python/``)
+        :param ready_pipe: make the pipe the Node host says 'ready' on (``serve`` listens
+          on the socket itself: none)
         """
         self.folder = Path(tempfile.mkdtemp(prefix='colcon-wasm-launch-'))
         socket_path = self.folder / SOCKET_NAME
@@ -89,14 +91,17 @@ class HostLaunch:
                                  bases=bases or install_space.bases)
         self.runtime_python = Path(runtime_python)
         self.types = description.get('types', [])
-        # the host writes 'ready' on this pipe once it listens (or ends, closing it)
-        self.ready, self.ready_for_host = os.pipe()
-        description['control'] = {'socket': str(socket_path), 'ready_fd': self.ready_for_host}
+        description['control'] = {'socket': str(socket_path)}
+        if ready_pipe:
+            # the host writes 'ready' on this pipe once it listens (or ends, closing it)
+            self.ready, self.ready_for_host = os.pipe()
+            description['control']['ready_fd'] = self.ready_for_host
 
-    def front_command(self, *, command, print_only=False):
-        """Return the command line of ``front.py``."""
+    def front_command(self, *, command, print_only=False, as_json=False):
+        """Return the command line of ``front.py`` (``as_json``: the arguments as JSON)."""
         options = {'file': str(self.path), 'arguments': self.arguments, 'types': self.types,
                    'show_args': self.show_args, 'print': print_only, 'command': command,
+                   'json': as_json,
                    'socket': None if print_only else self.prefix.config['socket']}
         return [sys.executable, '-m', FRONT_MODULE, json.dumps(options)]
 

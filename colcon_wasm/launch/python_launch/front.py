@@ -122,6 +122,28 @@ def arguments_text(description):
     return '\n'.join(lines)
 
 
+def arguments_list(description):
+    """
+    Describe a description's arguments for the page's form (``serve``'s ``/launch``).
+
+    Each is ``{name, default, description, choices, conditional}``; ``default``
+    is launch's description of the default (None: required).
+    """
+    listed = []
+    for argument in description.get_launch_arguments():
+        default = None
+        if argument.default_value is not None:
+            default = ' + '.join(token.describe() for token in argument.default_value)
+            # a plain text default reads as the text, not as its quoted description
+            if all(type(t).__name__ == 'TextSubstitution' for t in argument.default_value):
+                default = ''.join(t.text for t in argument.default_value)
+        listed.append({'name': argument.name, 'default': default,
+                       'description': argument.description or '',
+                       'choices': list(getattr(argument, 'choices', None) or []),
+                       'conditional': bool(argument._conditionally_included)})
+    return listed
+
+
 def parse_arguments(values):
     """Parse ``name:=value`` as ros2launch's ``parse_launch_arguments`` (the last one wins)."""
     parsed = {}
@@ -192,7 +214,8 @@ def run(options):
     given = parse_arguments(options.get('arguments', []))
     description = load_description(path)
     if options.get('show_args'):
-        print(arguments_text(description))
+        print(json.dumps(arguments_list(description)) if options.get('json')
+              else arguments_text(description))
         return 0
     check_arguments(path, description, given)
     if options.get('print'):

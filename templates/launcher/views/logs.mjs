@@ -59,7 +59,7 @@ export class LogsDock {
   /** Show the stdin line for a running process' tab only. */
   renderStdin() {
     const p = this.current === 'all' ? null : this.session.processes.get(this.current);
-    const running = !!p && p.state === 'running';
+    const running = !!p && p.state === 'running' && !p.noStdin;
     this.stdinRow.hidden = !running;
     if (running) this.stdinInput.placeholder = `type a line for ${p.label}, Enter to send`;
   }

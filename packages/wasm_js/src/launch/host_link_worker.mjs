@@ -13,19 +13,25 @@
  * answered in order of completion: a wait of the spin thread does not hold up
  * a call of the launch's thread (the waits sleep with Atomics.waitAsync).
  *
- * Messages: {init: {bus, pid, types}} first, then {id, fn, args}; answers
- * {id, result} or {id, error: {name, message}}. Values cross as JSON:
- * 64-bit integers as {$int: 'digits'}, typed arrays as lists.
+ * The same worker runs in the page (a Web Worker) for a launch file that
+ * `colcon-wasm serve` evaluates (templates/launcher/launch_files.mjs).
+ *
+ * Messages: {init: {bus, pid, types}} first (types: the types.json files'
+ * paths in Node.js, their parsed documents in the page), then {id, fn, args};
+ * answers {id, result} or {id, error: {name, message}}, and {log: {stream,
+ * text}} for what the node logs. Values cross as JSON: 64-bit integers as
+ * {$int: 'digits'}, typed arrays as lists.
  *
  * @module launch/host_link_worker
  */
 
-import { readFileSync } from 'node:fs';
-import { parentPort } from 'node:worker_threads';
-
 import { BusClient } from '../bus_client.mjs';
 import { TypeRegistry } from '../cdr.mjs';
+import { isNode } from '../platform.mjs';
 import { busModule } from '../python/bus_module.mjs';
+
+const port = isNode ? (await import('node:worker_threads')).parentPort : null;
+const post = (m) => (port ? port.postMessage(m) : globalThis.postMessage(m));
 
 /** Replace what JSON cannot carry: BigInts, typed arrays. */
 export function toWire(value) {
@@ -55,17 +61,19 @@ const ASYNC_FORMS = { wait: 'wait_async', wait_for_server: 'wait_for_server_asyn
 
 let functions = null;
 
-function start({ bus, pid, types }) {
+async function start({ bus, pid, types }) {
   const client = BusClient.attach(bus, pid);
   const registry = new TypeRegistry();
-  for (const path of types || []) {
+  const log = (stream, text) => post({ log: { stream: stream === 'stderr' ? 'stderr' : 'stdout', text: String(text) } });
+  const readFile = isNode ? (await import('node:fs')).readFileSync : null;
+  for (const entry of types || []) {
     try {
-      registry.add(JSON.parse(readFileSync(path, 'utf-8')));
+      registry.add(typeof entry === 'string' ? JSON.parse(readFile(entry, 'utf-8')) : entry);
     } catch (e) {
-      process.stderr.write(`[WARNING] [launch_ros]: cannot read the type descriptions ${path}: ${e.message}\n`);
+      const name = typeof entry === 'string' ? entry : 'of the page';
+      log('stderr', `[WARNING] [launch_ros]: cannot read the type descriptions ${name}: ${e.message}`);
     }
   }
-  const log = (stream, text) => process[stream === 'stderr' ? 'stderr' : 'stdout'].write(`${text}\n`);
   functions = busModule(client, registry, client.createContext(), () => {}, null, log);
 }
 
@@ -76,15 +84,17 @@ async function answer({ id, fn, args }) {
       throw new TypeError(`the bus has no function '${fn}'`);
     }
     const result = await functions[name](...fromWire(args || []));
-    parentPort.postMessage({ id, result: toWire(result === undefined ? null : result) });
+    post({ id, result: toWire(result === undefined ? null : result) });
   } catch (e) {
-    parentPort.postMessage({ id, error: { name: e && e.name ? e.name : 'Error', message: e && e.message ? e.message : String(e) } });
+    post({ id, error: { name: e && e.name ? e.name : 'Error', message: e && e.message ? e.message : String(e) } });
   }
 }
 
-if (parentPort) {
-  parentPort.on('message', (message) => {
-    if (message.init) start(message.init);
-    else answer(message);
-  });
-}
+// calls wait for the start: it reads the type descriptions first
+let started = null;
+const onMessage = (message) => {
+  if (message.init) started = start(message.init);
+  else (started || Promise.resolve()).then(() => answer(message));
+};
+if (port) port.on('message', onMessage);
+else if (typeof globalThis.WorkerGlobalScope !== 'undefined') globalThis.onmessage = (e) => onMessage(e.data);

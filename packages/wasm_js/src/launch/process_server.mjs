@@ -12,20 +12,13 @@
  * output, its signals and its exit code are the node's, so launch's process
  * events, `on_exit`, `respawn` and `Shutdown()` work as they do natively.
  *
- * Wire format, one JSON object per line on a Unix stream socket:
- *   shim -> host  {op: 'spawn', process: {...one process of a host plan..., args, env, files}}
- *                 {op: 'signal', name: 'SIGINT'|'SIGTERM'|'SIGKILL'}
- *   host -> shim  {ev: 'started', label}
- *                 {ev: 'log', stream: 'stdout'|'stderr', text}
- *                 {ev: 'exit', code, crashed, reason}
- *   launcher -> host  {op: 'end'}: the launch has finished; stop what is left
- *   rclpy -> host  {op: 'link'}, answered {ev: 'linked'}, then {id, fn, args} calls of the
- *                  bus functions, answered {id, result} or {id, error} (./host_link_worker.mjs)
- * A connection is one process, or one link; closing it stops the process (the shim was
- * killed), or removes the link's bus process.
+ * The messages are ./process_protocol.mjs', one JSON object per line on a Unix
+ * stream socket.
  */
 
 import net from 'node:net';
+
+import { processConnection } from './process_protocol.mjs';
 
 const MAX_LINE = 64 * 1024 * 1024; // a spawn carries --params-file contents
 
@@ -52,62 +45,13 @@ export function serveProcesses(path, hooks) {
   });
 }
 
-function serveConnection(socket, { spawn, end, link, err }) {
+function serveConnection(socket, hooks) {
   let buffered = '';
-  let handle = null;
-  let linked = null;
-  let pending = null; // a signal that came before the process started
-  let exited = false;
   const send = (message) => {
     if (!socket.destroyed) socket.write(`${JSON.stringify(message)}\n`);
   };
-  const stop = () => {
-    if (handle && !exited) handle.stop();
-  };
-  const onRequest = async (message) => {
-    if (linked && message.id !== undefined) {
-      linked.post(message);
-    } else if (message.op === 'link') {
-      linked = await link();
-      linked.onAnswer(send);
-      send({ ev: 'linked' });
-    } else if (message.op === 'end') {
-      end();
-    } else if (message.op === 'spawn') {
-      if (handle || pending === 'spawning') {
-        send({ ev: 'exit', code: null, crashed: true, reason: 'one process per connection' });
-        return;
-      }
-      pending = 'spawning';
-      const proc = message.process;
-      try {
-        handle = await spawn(proc, {
-          onLog: ({ stream, text }) => send({ ev: 'log', stream, text: String(text) }),
-          onExit: ({ code, crashed, reason }) => {
-            exited = true;
-            send({ ev: 'exit', code: code ?? null, crashed: !!crashed, reason: reason || '' });
-            socket.end();
-          },
-        });
-      } catch (e) {
-        exited = true;
-        send({ ev: 'exit', code: null, crashed: true, reason: e && e.message ? e.message : String(e) });
-        socket.end();
-        return;
-      }
-      const signalled = pending !== 'spawning';
-      pending = null;
-      if (!exited) send({ ev: 'started', label: proc.label });
-      if (signalled) stop();
-    } else if (message.op === 'signal') {
-      // a wasm program has no signal handlers of its own: every signal stops it, as
-      // rclcpp's SIGINT handler ends a node natively (its exit then reads as clean)
-      if (handle) stop();
-      else pending = message.name;
-    } else {
-      err(`[WARNING] [launch]: unknown request '${message.op}' from a process of the launch`);
-    }
-  };
+  const { onMessage, onClose } = processConnection({ send, end: () => socket.end() }, hooks);
+  const { err } = hooks;
   socket.setEncoding('utf-8');
   socket.on('data', (chunk) => {
     buffered += chunk;
@@ -129,13 +73,9 @@ function serveConnection(socket, { spawn, end, link, err }) {
         socket.destroy();
         return;
       }
-      onRequest(message).catch((e) => err(`[ERROR] [launch]: ${e && e.stack ? e.stack : e}`));
+      onMessage(message).catch((e) => err(`[ERROR] [launch]: ${e && e.stack ? e.stack : e}`));
     }
   });
-  // the shim was killed (SIGKILL) or ended: its program goes too; a link's bus process too
-  socket.on('close', () => {
-    stop();
-    if (linked) linked.close();
-  });
+  socket.on('close', onClose);
   socket.on('error', () => {});
 }
