@@ -14,6 +14,7 @@ import { LaunchFilesView } from './views/launch_files.mjs';
 import { ProcessesView } from './views/processes.mjs';
 import { LogsDock } from './views/logs.mjs';
 import { NodesView } from './views/nodes.mjs';
+import { GraphView } from './views/graph.mjs';
 import { TopicsView } from './views/topics.mjs';
 import { ServicesView } from './views/services.mjs';
 import { ActionsView } from './views/actions.mjs';
@@ -120,6 +121,7 @@ async function main() {
 
   const views = {
     nodes: new NodesView(session),
+    graph: new GraphView(session),
     topics: new TopicsView(session),
     services: new ServicesView(session),
     actions: new ActionsView(session),
@@ -129,6 +131,9 @@ async function main() {
   // for the browser console and the tests: colconWasm.views['3d'].displays
   window.colconWasm.views = views;
   const { nav, show } = tabs(views);
+  // a vertex of the graph, double-clicked, opens in its tab
+  views.graph.onTopic = (name) => { show('topics'); views.topics.select(name); };
+  views.graph.onNode = (fqn) => { show('nodes'); views.nodes.selected = fqn; views.nodes.render(session.graph); };
   const logs = new LogsDock(session);
   processes.onSelect = (id) => logs.select(id);
   // the console's input is the log dock's line: show its tab
@@ -145,6 +150,7 @@ async function main() {
   main.append(h('div', {}, banners, nav), viewHost, logs.element, playback.element);
   session.on('graph', (model) => {
     views.nodes.setCount(model.nodes.length);
+    views.graph.setCount(views.graph.links(model));
     views.topics.setCount(model.topics.length);
     views.services.setCount(model.services.length);
     views.actions.setCount(model.actions.length);

@@ -16,6 +16,7 @@
 //        | {sleep: MS} | {stop: NAME}
 //        | {until: JS expression (true when done), timeoutMs?, save?: NAME}: waits until the
 //          expression, evaluated in the page, is truthy; with `save` its value is in `saved`
+//        | {screenshot: PATH, width?, height?}: the page at that window size
 
 import { chromium } from 'playwright-core';
 
@@ -105,6 +106,11 @@ try {
         if (Date.now() > deadline) throw new Error(`timed out waiting until ${step.until}`);
         await new Promise((resolve) => setTimeout(resolve, 100));
       }
+    } else if (step.screenshot) {
+      // {screenshot: PATH, width, height}: what a user sees at that window size
+      if (step.width) await page.setViewportSize({ width: step.width, height: step.height || 900 });
+      await new Promise((resolve) => setTimeout(resolve, 300));
+      await page.screenshot({ path: step.screenshot });
     } else if (step.sleep) {
       await new Promise((resolve) => setTimeout(resolve, step.sleep));
     } else if (step.stop) {

@@ -1,0 +1,122 @@
+// Copyright 2026 colcon-wasm contributors
+// Licensed under the Apache License, Version 2.0
+
+// The Graph tab: the nodes and topics of the bus and who publishes and
+// subscribes to what, drawn as rqt_graph draws them (./graph_layout.mjs),
+// redrawn when the graph changes. A click marks a vertex and its edges; a
+// topic's double click opens it in the Topics tab, a node's in the Nodes tab.
+
+import { h, setChildren } from '../dom.mjs';
+import { graphOf, layoutGraph } from './graph_layout.mjs';
+
+const SVG = 'http://www.w3.org/2000/svg';
+const MARGIN = 16;
+
+function svg(tag, attributes = {}, ...children) {
+  const element = document.createElementNS(SVG, tag);
+  for (const [name, value] of Object.entries(attributes)) element.setAttribute(name, String(value));
+  for (const child of children) element.append(child);
+  return element;
+}
+
+/** The path of an edge: a curve to the right, or below both ends for one that goes back. */
+function edgePath([[x1, y1], [x2, y2]], reversed) {
+  if (!reversed) {
+    const bend = Math.max(30, (x2 - x1) / 2);
+    return `M${x1},${y1} C${x1 + bend},${y1} ${x2 - bend},${y2} ${x2},${y2}`;
+  }
+  const below = Math.max(y1, y2) + 40;
+  return `M${x1},${y1} C${x1 - 60},${below} ${x2 + 60},${below} ${x2},${y2}`;
+}
+
+export class GraphView {
+  constructor(session) {
+    this.title = 'Graph';
+    this.session = session;
+    this.options = { topics: true, debug: false, leaves: true };
+    this.marked = null;
+    this.layout = null;
+    this.onTopic = null;
+    this.onNode = null;
+    const toggle = (name, label, title) => h('label.graph-option', { title },
+      h('input', {
+        type: 'checkbox', checked: this.options[name], dataset: { option: name },
+        onchange: (e) => { this.options[name] = e.target.checked; this.render(); },
+      }), label);
+    this.canvas = h('div.graph-canvas');
+    this.summary = h('span.note');
+    this.element = h('section.view', { dataset: { view: 'graph' } },
+      h('div.card.graph-card', {},
+        h('div.graph-bar', {},
+          toggle('topics', 'Topics', 'draw topics as boxes between their publishers and subscribers; off: node to node, labelled with the topics (rqt_graph "Nodes only")'),
+          toggle('leaves', 'Leaf topics', 'topics with no publisher or no subscriber (rqt_graph "Dead sinks", "Leaf topics")'),
+          toggle('debug', 'Debug', '/rosout, /parameter_events and hidden names (rqt_graph "Hide: Debug")'),
+          h('span', { style: { flex: 1 } }), this.summary),
+        this.canvas));
+    // drawn while the tab shows only
+    session.on('graph', () => { if (!this.element.hidden) this.render(); });
+  }
+
+  /** The tab is shown: draw what the graph is now. */
+  shown() {
+    this.render();
+  }
+
+  /** How many publisher and subscriber links the tab would draw (its count). */
+  links(model) {
+    return graphOf(model, this.options).edges.length;
+  }
+
+  render() {
+    const graph = graphOf(this.session.graph, this.options);
+    this.layout = layoutGraph(graph);
+    const { boxes, edges, width, height } = this.layout;
+    const nodes = boxes.filter((b) => b.kind === 'node').length;
+    this.summary.textContent = `${nodes} nodes, ${boxes.length - nodes} topics, ${edges.length} edges`;
+    if (boxes.length === 0) {
+      setChildren(this.canvas, h('div.empty', {}, 'No nodes. Run an executable or a launch file.'));
+      return;
+    }
+    const marked = this.marked && boxes.some((b) => b.id === this.marked) ? this.marked : null;
+    const near = new Set(marked ? [marked] : []);
+    for (const e of edges) if (e.from === marked || e.to === marked) { near.add(e.from); near.add(e.to); }
+    const root = svg('svg', {
+      viewBox: `${-MARGIN} ${-MARGIN} ${width + 2 * MARGIN} ${height + 2 * MARGIN + 40}`,
+      width: width + 2 * MARGIN, height: height + 2 * MARGIN + 40, class: 'graph', role: 'img',
+      'aria-label': this.summary.textContent,
+    });
+    root.append(svg('defs', {}, svg('marker', {
+      id: 'graph-arrow', viewBox: '0 0 10 10', refX: 10, refY: 5, markerWidth: 7, markerHeight: 7, orient: 'auto-start-reverse',
+    }, svg('path', { d: 'M0,0 L10,5 L0,10 z', class: 'graph-arrow' }))));
+    for (const e of edges) {
+      const on = marked && (e.from === marked || e.to === marked);
+      const path = svg('path', {
+        d: edgePath(e.points, e.reversed), class: `graph-edge${on ? ' marked' : ''}${marked && !on ? ' faded' : ''}`,
+        'marker-end': 'url(#graph-arrow)', 'data-from': e.from, 'data-to': e.to,
+      });
+      root.append(path);
+      if (e.label) {
+        const [[x1, y1], [x2, y2]] = e.points;
+        root.append(svg('text', { x: (x1 + x2) / 2, y: (y1 + y2) / 2 - 5, class: 'graph-edge-label', 'text-anchor': 'middle' }, e.label));
+      }
+    }
+    for (const b of boxes) {
+      const group = svg('g', {
+        class: `graph-vertex ${b.kind}${b.id === marked ? ' marked' : ''}${marked && !near.has(b.id) ? ' faded' : ''}`,
+        'data-id': b.id, tabindex: 0,
+      });
+      group.append(svg('title', {}, b.kind === 'node' ? `node ${b.label}` : `topic ${b.label}`));
+      group.append(b.kind === 'node'
+        ? svg('ellipse', { cx: b.x + b.width / 2, cy: b.y + b.height / 2, rx: b.width / 2, ry: b.height / 2 })
+        : svg('rect', { x: b.x, y: b.y, width: b.width, height: b.height, rx: 3 }));
+      group.append(svg('text', { x: b.x + b.width / 2, y: b.y + b.height / 2 + 4, 'text-anchor': 'middle' }, b.label));
+      group.addEventListener('click', () => { this.marked = this.marked === b.id ? null : b.id; this.render(); });
+      group.addEventListener('dblclick', () => {
+        if (b.kind === 'topic' && this.onTopic) this.onTopic(b.label);
+        if (b.kind === 'node' && this.onNode) this.onNode(b.label);
+      });
+      root.append(group);
+    }
+    setChildren(this.canvas, root);
+  }
+}
