@@ -154,7 +154,8 @@ async function main() {
     views.topics.setCount(model.topics.length);
     views.services.setCount(model.services.length);
     views.actions.setCount(model.actions.length);
-    views.parameters.setCount(model.nodes.length);
+    // the nodes that have parameters to show: those with rcl's parameter services
+    views.parameters.setCount(model.nodes.filter((n) => n.services.some((e) => e.name === `${n.fqn}/list_parameters`)).length);
   });
   const wanted = location.hash.slice(1);
   show(wanted in views ? wanted : 'topics');

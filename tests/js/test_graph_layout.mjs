@@ -65,3 +65,22 @@ test('nodes only: node -> node edges labelled with their topics; leaf topics can
   assert.ok(!noLeaves.vertices.some((v) => v.id === 't:/nobody'));
   assert.ok(graphOf(model).vertices.some((v) => v.id === 't:/nobody'));
 });
+
+test('namespaces grouped: each framed, its members inside, edges between frames', () => {
+  const model = {
+    nodes: [node('/robot1/talker', ['/robot1/chatter']), node('/robot1/listener', [], ['/robot1/chatter']),
+      node('/monitor', [], ['/robot1/chatter'])],
+  };
+  const { boxes, groups, edges } = layoutGraph(graphOf(model), { groups: true });
+  assert.deepEqual(groups.map((g) => g.name), ['/robot1']);
+  const frame = groups[0];
+  for (const b of boxes.filter((x) => x.label.startsWith('/robot1/'))) {
+    assert.ok(b.x >= frame.x && b.x + b.width <= frame.x + frame.width, `${b.label} is inside the frame`);
+    assert.ok(b.y >= frame.y && b.y + b.height <= frame.y + frame.height, `${b.label} is inside the frame`);
+  }
+  const monitor = boxes.find((b) => b.label === '/monitor');
+  assert.ok(monitor.y + monitor.height <= frame.y || monitor.y >= frame.y + frame.height, 'the root is outside');
+  assert.equal(edges.length, 3);
+  const flat = layoutGraph(graphOf(model));
+  assert.deepEqual(flat.groups, []);
+});

@@ -3,8 +3,10 @@
 
 // The Graph tab: the nodes and topics of the bus and who publishes and
 // subscribes to what, drawn as rqt_graph draws them (./graph_layout.mjs),
-// redrawn when the graph changes. A click marks a vertex and its edges; a
-// topic's double click opens it in the Topics tab, a node's in the Nodes tab.
+// redrawn when the graph changes, namespaces framed. A click marks a vertex
+// and its edges and shows it in the inspector beside the graph (its
+// endpoints, or its type, publishers and subscribers), with a button that
+// opens it in its tab; a double click opens it at once.
 
 import { h, setChildren } from '../dom.mjs';
 import { graphOf, layoutGraph } from './graph_layout.mjs';
@@ -33,7 +35,7 @@ export class GraphView {
   constructor(session) {
     this.title = 'Graph';
     this.session = session;
-    this.options = { topics: true, debug: false, leaves: true };
+    this.options = { topics: true, debug: false, leaves: true, groups: true };
     this.marked = null;
     this.layout = null;
     this.onTopic = null;
@@ -44,6 +46,7 @@ export class GraphView {
         onchange: (e) => { this.options[name] = e.target.checked; this.render(); },
       }), label);
     this.canvas = h('div.graph-canvas');
+    this.inspector = h('div.graph-inspector');
     this.summary = h('span.note');
     this.element = h('section.view', { dataset: { view: 'graph' } },
       h('div.card.graph-card', {},
@@ -51,8 +54,9 @@ export class GraphView {
           toggle('topics', 'Topics', 'draw topics as boxes between their publishers and subscribers; off: node to node, labelled with the topics (rqt_graph "Nodes only")'),
           toggle('leaves', 'Leaf topics', 'topics with no publisher or no subscriber (rqt_graph "Dead sinks", "Leaf topics")'),
           toggle('debug', 'Debug', '/rosout, /parameter_events and hidden names (rqt_graph "Hide: Debug")'),
+          toggle('groups', 'Namespaces', 'frame the nodes and topics of each namespace (rqt_graph "Group: Namespaces")'),
           h('span', { style: { flex: 1 } }), this.summary),
-        this.canvas));
+        h('div.graph-body', {}, this.canvas, this.inspector)));
     // drawn while the tab shows only
     session.on('graph', () => { if (!this.element.hidden) this.render(); });
   }
@@ -69,15 +73,17 @@ export class GraphView {
 
   render() {
     const graph = graphOf(this.session.graph, this.options);
-    this.layout = layoutGraph(graph);
-    const { boxes, edges, width, height } = this.layout;
+    this.layout = layoutGraph(graph, { groups: this.options.groups });
+    const { boxes, edges, groups, width, height } = this.layout;
     const nodes = boxes.filter((b) => b.kind === 'node').length;
     this.summary.textContent = `${nodes} nodes, ${boxes.length - nodes} topics, ${edges.length} edges`;
     if (boxes.length === 0) {
       setChildren(this.canvas, h('div.empty', {}, 'No nodes. Run an executable or a launch file.'));
+      this.inspect(null);
       return;
     }
     const marked = this.marked && boxes.some((b) => b.id === this.marked) ? this.marked : null;
+    this.inspect(marked && boxes.find((b) => b.id === marked));
     const near = new Set(marked ? [marked] : []);
     for (const e of edges) if (e.from === marked || e.to === marked) { near.add(e.from); near.add(e.to); }
     const root = svg('svg', {
@@ -88,6 +94,10 @@ export class GraphView {
     root.append(svg('defs', {}, svg('marker', {
       id: 'graph-arrow', viewBox: '0 0 10 10', refX: 10, refY: 5, markerWidth: 7, markerHeight: 7, orient: 'auto-start-reverse',
     }, svg('path', { d: 'M0,0 L10,5 L0,10 z', class: 'graph-arrow' }))));
+    for (const g of groups) {
+      root.append(svg('rect', { x: g.x, y: g.y, width: g.width, height: g.height, rx: 8, class: 'graph-group', 'data-group': g.name }));
+      root.append(svg('text', { x: g.x + 10, y: g.y + 16, class: 'graph-group-label' }, g.name));
+    }
     for (const e of edges) {
       const on = marked && (e.from === marked || e.to === marked);
       const path = svg('path', {
@@ -118,5 +128,31 @@ export class GraphView {
       root.append(group);
     }
     setChildren(this.canvas, root);
+  }
+
+  /** Show a marked vertex in the inspector: a node's endpoints, a topic's type and ends. */
+  inspect(box) {
+    this.inspector.hidden = !box;
+    if (!box) return;
+    const model = this.session.graph;
+    const list = (title, items) => [h('div.note', {}, `${title} (${items.length})`),
+      h('ul.graph-list', {}, items.length ? items.map((text) => h('li', {}, text)) : h('li.note', {}, 'none'))];
+    if (box.kind === 'node') {
+      const node = model.nodes.find((n) => n.fqn === box.label);
+      if (!node) return;
+      setChildren(this.inspector, h('h3', {}, 'Node'), h('div.mono', {}, node.fqn),
+        node.process ? h('div.note', {}, `process ${node.process}`) : null,
+        ...list('publishes', node.publishers.map((e) => e.name)),
+        ...list('subscribes', node.subscriptions.map((e) => e.name)),
+        ...list('services', node.services.map((e) => e.name)),
+        h('button', { onclick: () => this.onNode && this.onNode(node.fqn) }, 'Open in Nodes'));
+      return;
+    }
+    const topic = model.topics.find((t) => t.name === box.label);
+    const ends = (key) => model.nodes.filter((n) => n[key].some((e) => e.name === box.label)).map((n) => n.fqn);
+    setChildren(this.inspector, h('h3', {}, 'Topic'), h('div.mono', {}, box.label),
+      h('div.note', {}, topic ? topic.types.join(', ') : ''),
+      ...list('publishers', ends('publishers')), ...list('subscribers', ends('subscriptions')),
+      h('button', { onclick: () => this.onTopic && this.onTopic(box.label) }, 'Echo in Topics'));
   }
 }

@@ -15,6 +15,10 @@
  *   3. within a column, vertices are ordered by the mean row of their
  *      neighbours, sweeping right then left a few times (fewer crossings);
  *   4. columns are centred on one another.
+ * With `groups`, each namespace (a name's first part, `/robot1` of
+ * `/robot1/talker` and `/robot1/chatter`) is laid out by itself and framed,
+ * as rqt_graph clusters namespaces; the frames are stacked, the root
+ * namespace first, and edges between them drawn from box to box.
  *
  * @module views/graph_layout
  */
@@ -28,6 +32,15 @@ const BOX_HEIGHT = 30;
 const ROW_GAP = 18;
 const COLUMN_GAP = 70;
 const SWEEPS = 4;
+const GROUP_PAD = 14;
+const GROUP_LABEL = 18;
+const GROUP_GAP = 24;
+
+/** The namespace a name is grouped in: its first part when it has more ('' for the root). */
+export function namespaceOf(name) {
+  const parts = name.split('/').filter(Boolean);
+  return parts.length > 1 ? `/${parts[0]}` : '';
+}
 
 /**
  * The vertices and edges to draw.
@@ -88,13 +101,50 @@ function push(map, key, value) {
 /**
  * Lay a graph out (see the module).
  * @param {{vertices: Array<{id, kind, label}>, edges: Array<{from, to, label}>}} graph
- * @returns {{boxes: Array<{id, kind, label, x, y, width, height, column, row}>,
- *   edges: Array<{from, to, label, reversed, points: number[][]}>, width: number, height: number}}
+ * @param {object} [options]
+ * @param {boolean} [options.groups=false] frame each namespace (see the module)
+ * @returns {{boxes: Array<{id, kind, label, x, y, width, height, column, row, group}>,
+ *   edges: Array<{from, to, label, reversed, points: number[][]}>,
+ *   groups: Array<{name, x, y, width, height}>, width: number, height: number}}
  */
-export function layoutGraph(graph) {
-  const ids = graph.vertices.map((v) => v.id).sort();
+export function layoutGraph(graph, { groups = false } = {}) {
+  const edges = graph.edges.filter((e) => e.from !== e.to);
+  const names = groups ? [...new Set(graph.vertices.map((v) => namespaceOf(v.label)))].sort() : [''];
+  const boxes = new Map();
+  const frames = [];
+  let top = 0;
+  let width = 0;
+  for (const name of names) {
+    const members = graph.vertices.filter((v) => !groups || namespaceOf(v.label) === name);
+    const inside = new Set(members.map((v) => v.id));
+    const part = layered(members, edges.filter((e) => inside.has(e.from) && inside.has(e.to)));
+    const framed = groups && name !== '';
+    const dx = framed ? GROUP_PAD : 0;
+    const dy = top + (framed ? GROUP_PAD + GROUP_LABEL : 0);
+    for (const b of part.boxes) boxes.set(b.id, { ...b, x: b.x + dx, y: b.y + dy, group: name });
+    const frameWidth = part.width + 2 * dx;
+    const frameHeight = part.height + (framed ? 2 * GROUP_PAD + GROUP_LABEL : 0);
+    if (framed) frames.push({ name, x: 0, y: top, width: frameWidth, height: frameHeight });
+    width = Math.max(width, frameWidth);
+    top += frameHeight + GROUP_GAP;
+  }
+  const laid = [];
+  for (const e of edges) {
+    const a = boxes.get(e.from);
+    const b = boxes.get(e.to);
+    if (!a || !b) continue;
+    const back = a.group === b.group ? b.column <= a.column : b.x <= a.x + a.width;
+    const start = back ? [a.x, a.y + a.height / 2] : [a.x + a.width, a.y + a.height / 2];
+    const end = back ? [b.x + b.width, b.y + b.height / 2] : [b.x, b.y + b.height / 2];
+    laid.push({ from: e.from, to: e.to, label: e.label || '', reversed: back, points: [start, end] });
+  }
+  return { boxes: [...boxes.values()], edges: laid, groups: frames, width, height: Math.max(0, top - GROUP_GAP) };
+}
+
+/** The layered layout of one set of vertices (steps 1-4 of the module). */
+function layered(vertices, edges) {
+  const ids = vertices.map((v) => v.id).sort();
   const out = new Map(ids.map((id) => [id, []]));
-  const edges = graph.edges.filter((e) => out.has(e.from) && out.has(e.to) && e.from !== e.to);
   for (const e of edges) out.get(e.from).push(e.to);
   for (const list of out.values()) list.sort();
   const reversed = backEdges(ids, out);
@@ -110,8 +160,8 @@ export function layoutGraph(graph) {
   const columns = [];
   for (const id of ids) (columns[column.get(id)] ||= []).push(id);
   order(columns, preds, succs);
-  const byId = new Map(graph.vertices.map((v) => [v.id, v]));
-  const boxes = new Map();
+  const byId = new Map(vertices.map((v) => [v.id, v]));
+  const boxes = [];
   let x = 0;
   let height = 0;
   const columnHeights = columns.map((c) => c.length * BOX_HEIGHT + Math.max(0, c.length - 1) * ROW_GAP);
@@ -122,21 +172,13 @@ export function layoutGraph(graph) {
     list.forEach((id, row) => {
       const v = byId.get(id);
       const w = textWidth(v.label) + 2 * PAD_X;
-      boxes.set(id, { ...v, x: x + (width - w) / 2, y, width: w, height: BOX_HEIGHT, column: c, row });
+      boxes.push({ ...v, x: x + (width - w) / 2, y, width: w, height: BOX_HEIGHT, column: c, row });
       y += BOX_HEIGHT + ROW_GAP;
     });
     height = Math.max(height, y - ROW_GAP);
     x += width + COLUMN_GAP;
   });
-  const laid = edges.map((e) => {
-    const a = boxes.get(e.from);
-    const b = boxes.get(e.to);
-    const back = b.column <= a.column;
-    const start = back ? [a.x, a.y + a.height / 2] : [a.x + a.width, a.y + a.height / 2];
-    const end = back ? [b.x + b.width, b.y + b.height / 2] : [b.x, b.y + b.height / 2];
-    return { from: e.from, to: e.to, label: e.label || '', reversed: back, points: [start, end] };
-  });
-  return { boxes: [...boxes.values()], edges: laid, width: Math.max(0, x - COLUMN_GAP), height };
+  return { boxes, width: Math.max(0, x - COLUMN_GAP), height };
 }
 
 /** The edges that close a cycle, found by a depth-first search in id order. */
