@@ -60,6 +60,7 @@ function isolationBanner() {
     h('div', {}, 'The nodes share memory (SharedArrayBuffer), which browsers allow only on pages '
       + 'served with these two HTTP headers:'),
     h('pre', {}, 'Cross-Origin-Opener-Policy: same-origin\nCross-Origin-Embedder-Policy: require-corp'),
+    workspace.isolationProblem ? h('div', {}, `This is an exported site: ${workspace.isolationProblem}.`) : null,
     h('div', { style: { marginTop: '8px' } }, 'Open the page through ',
       h('code', {}, 'colcon-wasm serve'), ', which sends them, or add them to your web server.'));
 }
@@ -87,14 +88,48 @@ function tabs(views) {
 
 function runRequests() {
   const params = new URLSearchParams(location.search);
-  return params.getAll('run').map((spec) => {
+  // ?run= wins; an exported site may name its own (export --run)
+  const specs = params.getAll('run').length ? params.getAll('run') : (workspace.autorun || []);
+  return specs.map((spec) => {
     const words = splitArgs(spec);
     const [pkg, exe] = (words[0] || '').split('/');
     return { spec, pkg, exe, args: words.slice(1) };
   });
 }
 
+/**
+ * An exported site (colcon-wasm export) on a host that sends no isolation
+ * headers: its service worker (coi_sw.js) adds them; the page registers it
+ * and reloads once under it. Returns true when the page reloads.
+ */
+async function isolateStaticSite() {
+  if (!workspace.static || window.crossOriginIsolated) return false;
+  if (!('serviceWorker' in navigator) || !window.isSecureContext) {
+    workspace.isolationProblem = 'this browser gives the page no service worker (it needs https:// or '
+      + 'http://localhost), and the host sends no isolation headers';
+    return false;
+  }
+  try {
+    await navigator.serviceWorker.register(new URL('/coi_sw.js', location.href));
+    await navigator.serviceWorker.ready;
+  } catch (e) {
+    workspace.isolationProblem = `the site's service worker (coi_sw.js) did not start: ${e.message}`;
+    return false;
+  }
+  if (sessionStorage.getItem('colcon-wasm:isolating') === location.href) {
+    sessionStorage.removeItem('colcon-wasm:isolating');
+    workspace.isolationProblem = 'the page is not isolated although the site\'s service worker (coi_sw.js) '
+      + 'runs: the browser may block service workers for this site';
+    return false;
+  }
+  sessionStorage.setItem('colcon-wasm:isolating', location.href);
+  location.reload();
+  return true;
+}
+
 async function main() {
+  if (await isolateStaticSite()) return;
+  sessionStorage.removeItem('colcon-wasm:isolating');
   const session = new Session(workspace);
   // for the browser console: colconWasm.session.runtime, .graph, .processes
   window.colconWasm = { session };
@@ -107,7 +142,7 @@ async function main() {
   const side = h('aside.side');
   const main = h('main.main');
   // record and replay: the bar at the bottom of the main area, its REC chip and /clock box in the header
-  const playback = new PlaybackBar(session);
+  const playback = new PlaybackBar(session, workspace.bag && workspace.bag.problem);
   setChildren(app, header(session, playback.headerItems), side, main);
 
   const processes = new ProcessesView(session);

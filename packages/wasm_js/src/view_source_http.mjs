@@ -127,7 +127,19 @@ export function httpViewSource(url, root) {
         if (!entry || entry.kind !== 'dir') return; // the path ends (or fails) in what is known
         dir = `${dir}/${parts[depth]}`;
       }
-      const walk = JSON.parse(getSync(`${urlOf(path)}/?walk=${depth}`, 'text'));
+      let walk;
+      try {
+        walk = JSON.parse(getSync(`${urlOf(path)}/?walk=${depth}`, 'text'));
+      } catch (e) {
+        if (e.code === 'ENOENT') return; // the path is no directory: the lookup says what is missing
+        throw e;
+      }
+      if (!walk.listings) {
+        // a static copy of the views (colcon-wasm export) has no walks: it answers with the
+        // directory's own listing, and the lookup lists the rest one directory at a time
+        if (walk.entries && !listings.has(path)) listings.set(path, listingOf(walk));
+        return;
+      }
       for (const [relative, listing] of Object.entries(walk.listings)) {
         const at = relative ? `${root}/${relative}` : root;
         if (!listings.has(at)) listings.set(at, listingOf(listing));

@@ -42,7 +42,8 @@ const PLAY = {
 
 /** The bar; `window.colconWasm.bag` holds the recorder and the player. */
 export class PlaybackBar {
-  constructor(session) {
+  /** @param {string} [problem] why bags cannot be recorded or played here (an exported page) */
+  constructor(session, problem = null) {
     this.status = h('span.bag-status#bag-state', {}, 'no bag open');
     const say = (text, state, more = '') => {
       this.status.textContent = text;
@@ -69,6 +70,12 @@ export class PlaybackBar {
     }, clock, '/clock');
     this.element = h('div.playback#playback-bar', { dataset: { state: 'closed' } },
       record.button, open, file, h('span.sep'), this.controls, this.hint, this.status);
+    if (problem) {
+      record.button.disabled = true;
+      open.disabled = true;
+      this.hint.textContent = `Off: ${problem}.`;
+      this.hint.classList.add('reason');
+    }
     /** For the header: the REC chip (while recording) and the /clock box (once a bag is open). */
     this.headerItems = [record.chip, this.clock];
 
@@ -85,7 +92,7 @@ export class PlaybackBar {
     document.addEventListener('dragover', (e) => { e.preventDefault(); });
     document.addEventListener('drop', (e) => {
       const f = [...(e.dataTransfer?.files || [])].find((x) => x.name.endsWith('.mcap'));
-      if (!f) return;
+      if (!f || problem) return;
       e.preventDefault();
       this.open(f);
     });

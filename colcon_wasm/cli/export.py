@@ -1,0 +1,52 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""`colcon-wasm export`."""
+
+import sys
+
+from colcon_wasm import resources
+from colcon_wasm.cli import CliExtensionPoint
+from colcon_wasm.launch.install_space import InstallSpace
+from colcon_wasm.launch.install_space import InstallSpaceError
+
+
+class ExportCommand(CliExtensionPoint):
+    """Write the launcher page and the install space's nodes as a static site."""
+
+    def add_arguments(self, *, parser):  # noqa: D102
+        parser.add_argument(
+            'target', metavar='DIR',
+            help='The folder to write the site into (new, empty, or an earlier export)')
+        parser.add_argument(
+            '--install-base', default='install_wasm',
+            help='The install space to export (default: install_wasm); its underlays come too')
+        parser.add_argument(
+            '--run', action='append', default=[], metavar='"PKG/EXE [ARGS]"',
+            help='An executable the page starts when it opens, as ?run= does (repeatable)')
+        parser.add_argument('--title', help='The page title (default: the workspace name)')
+
+    def main(self, *, args):  # noqa: D102
+        from colcon_wasm.server import find_runtime
+        from colcon_wasm.server import ServeError
+        from colcon_wasm.server import Site
+        from colcon_wasm.server import runtime_entry
+        from colcon_wasm.server.export import export_site
+        from colcon_wasm.server.export import ExportError
+        try:
+            install_space = InstallSpace(args.install_base)
+            bundled = resources.path('packages') / 'wasm_js' / 'src'
+            runtime_dir, origin = find_runtime(install_space, bundled)
+            site = Site(install_space, launcher_dir=resources.path('templates') / 'launcher',
+                        runtime_dir=runtime_dir, runtime_origin=origin,
+                        runtime_entry=runtime_entry(runtime_dir), page_modules_dir=bundled,
+                        title=args.title)
+            count, size = export_site(site, args.target, runs=args.run)
+        except (ExportError, InstallSpaceError, ServeError) as e:
+            print(f'colcon-wasm export: {e}', file=sys.stderr)
+            return 1
+        print(f'Exported {len(install_space.executables())} executable(s) of '
+              f'{install_space.base} into {args.target}: {count} files, {size / 1e6:.1f} MB')
+        print(f'Serve the folder from any static host, e.g. python3 -m http.server -d '
+              f'{args.target} 8000, and open http://localhost:8000/')
+        return 0

@@ -1,0 +1,191 @@
+# Copyright 2026 colcon-wasm contributors
+# Licensed under the Apache License, Version 2.0
+
+"""
+``colcon-wasm export DIR``: the launcher page and its nodes as a static site.
+
+Everything ``serve`` answers for the page is written into ``DIR`` at the
+same URL paths (``site.py``): the page (rendered, the workspace embedded),
+``/launcher/``, ``/wasm_js/``, the files the manifests list (``/ws/``), the
+share files of ``package://`` (``/package/``), the page's libraries
+(``/vendor/``) and the read-only views of the install bases (``/fs/``), each
+directory's listing as the ``index.html`` a static host sends for ``dir/``.
+Any static host serves it (``python3 -m http.server``, nginx, GitHub Pages).
+
+Static hosts seldom send the cross-origin isolation headers that
+``SharedArrayBuffer`` needs: the site's service worker (``coi_sw.js``, at its
+root) adds them, and the page reloads once under it (``app.mjs``).
+
+What needs the server is off in an exported page, and says so: launch files
+(serve evaluates them), the bag player and recorder (serve reads and writes
+MCAP), the rosbridge relay, and Python nodes (Pyodide is not copied).
+"""
+
+import json
+from pathlib import Path
+import shutil
+
+from colcon_wasm.error import ColconWasmError
+
+MARKER = '.colcon-wasm-export.json'
+SERVICE_WORKER = 'coi_sw.js'
+_NO_SERVER = 'an exported page has no colcon-wasm serve behind it'
+
+
+class ExportError(ColconWasmError):
+    """An export that cannot be written; the text says why and what to do."""
+
+
+def check_target(target):
+    """
+    Refuse a target folder that holds something other than an earlier export.
+
+    :raises ExportError: naming the folder
+    """
+    target = Path(target)
+    if target.exists() and not target.is_dir():
+        raise ExportError(f"'{target}' is a file: export into a folder")
+    if target.is_dir() and any(target.iterdir()) and not (target / MARKER).is_file():
+        raise ExportError(
+            f"'{target}' is not empty and holds no earlier export ({MARKER}): export into an "
+            'empty or new folder, or remove it first; nothing was written')
+
+
+def check_runs(site, runs):
+    """
+    Refuse ``--run`` items that name no executable of the install space.
+
+    :raises ExportError: with the executables there are
+    """
+    known = {f"{p['name']}/{e['name']}" for p in site.workspace()['packages']
+             for e in p['executables']}
+    for spec in runs:
+        item = spec.split(' ')[0]
+        if item not in known:
+            raise ExportError(
+                f"--run {spec}: there is no executable '{item}' in the install space "
+                f"{site.install_space.base}; there are: {', '.join(sorted(known)) or 'none'}; "
+                'nothing was written')
+
+
+def export_site(site, target, *, runs=(), title=None):
+    """
+    Write the static site of ``site`` into ``target``.
+
+    :param runs: ``PKG/EXE [ARGS]`` the page starts on load, as ``?run=`` does
+    :returns: ``(number of files, bytes)`` written
+    """
+    target = Path(target)
+    check_target(target)
+    check_runs(site, runs)
+    if target.is_dir():
+        for child in target.iterdir():  # an earlier export: replaced as a whole
+            shutil.rmtree(child) if child.is_dir() and not child.is_symlink() else child.unlink()
+    target.mkdir(parents=True, exist_ok=True)
+    writer = _Writer(target)
+    workspace = static_workspace(site, runs)
+    site.workspace = lambda: workspace  # what the page embeds
+    writer.body('index.html', site.page({'run': list(runs)}).body)
+    writer.body('workspace.json', json.dumps(workspace).encode())
+    writer.tree('launcher', site.launcher_dir, skip=('.jinja', '.html'))
+    _write_runtime(writer, site)
+    for (package_name, relative), package in sorted(site._allowed_files().items()):
+        writer.file(f'ws/{package_name}/{relative}', Path(package.prefix) / relative)
+    for name, share in sorted(site.install_space.share_folders().items()):
+        writer.tree(f'package/{name}', share)
+    _write_vendor(writer)
+    _write_views(writer, site)
+    writer.file(SERVICE_WORKER, site.launcher_dir / SERVICE_WORKER)
+    writer.body(MARKER, json.dumps({'install_base': str(site.install_space.base),
+                                    'runs': list(runs)}).encode())
+    return writer.count, writer.bytes
+
+
+def static_workspace(site, runs):
+    """Return the workspace the exported page embeds: what needs serve is off, and says why."""
+    workspace = dict(site.workspace())
+    workspace['static'] = True
+    workspace['autorun'] = list(runs)
+    workspace['rosbridge'] = None
+    workspace['launch'] = {'socket': None, 'files': [], 'problem':
+                           f'{_NO_SERVER}: launch files are evaluated by serve'}
+    workspace['python'] = dict(workspace.get('python') or {}, pyodide=None,
+                               problem=f'{_NO_SERVER}, and Pyodide is not in the export: '
+                                       'Python nodes need colcon-wasm serve --pyodide')
+    workspace['bag'] = {'problem': f'{_NO_SERVER}: recording and playing bags need serve'}
+    return workspace
+
+
+def _write_runtime(writer, site):
+    """Write the runtime (``/wasm_js/``): its folder, and the page's own modules over it."""
+    from colcon_wasm.server.site import PAGE_MODULES
+    writer.tree('wasm_js', site.runtime_dir)
+    for name in PAGE_MODULES:
+        source = site.page_modules_dir / name
+        if source.is_dir():
+            writer.tree(f'wasm_js/{name}', source)
+        elif source.is_file():
+            writer.file(f'wasm_js/{name}', source)
+
+
+def _write_vendor(writer):
+    """Write the page's pinned libraries, when they are there (the 3D view needs them)."""
+    from colcon_wasm.vendor import vendor_dir
+    from colcon_wasm.vendor import VendorError
+    try:
+        folder = vendor_dir()
+    except VendorError:
+        return  # the 3D tab then says why, as under serve
+    writer.tree('vendor', folder)
+
+
+def _write_views(writer, site):
+    """Write the read-only views (``/fs/<n>/``): files, each directory's listing as index.html."""
+    for number, base in enumerate(site.views.bases):
+        base = Path(base)
+        for folder in [base, *sorted(p for p in base.rglob('*') if p.is_dir())]:
+            parts = list(folder.relative_to(base).parts)
+            try:
+                kind, listing = site.views.content(str(number), parts, True)
+            except Exception:  # out of bounds (a link leaving the base): not in the view
+                continue
+            relative = '/'.join(['fs', str(number), *parts])
+            if (folder / 'index.html').exists():
+                raise ExportError(
+                    f"'{folder / 'index.html'}' is in the install space: an exported view "
+                    'writes each directory listing there; rename the file')
+            writer.body(f'{relative}/index.html', listing)
+            for entry in json.loads(listing)['entries']:
+                if entry['kind'] == 'file':
+                    writer.file(f'{relative}/{entry["name"]}', folder / entry['name'])
+
+
+class _Writer:
+    """Files into the export folder, counted."""
+
+    def __init__(self, root):
+        self.root = Path(root)
+        self.count = 0
+        self.bytes = 0
+
+    def _target(self, relative):
+        path = self.root / relative
+        path.parent.mkdir(parents=True, exist_ok=True)
+        return path
+
+    def body(self, relative, data):
+        self._target(relative).write_bytes(data)
+        self.count += 1
+        self.bytes += len(data)
+
+    def file(self, relative, source):
+        path = self._target(relative)
+        shutil.copyfile(source, path)
+        self.count += 1
+        self.bytes += path.stat().st_size
+
+    def tree(self, relative, folder, skip=()):
+        for source in sorted(Path(folder).rglob('*')):
+            if source.is_file() and not source.name.endswith(skip) \
+                    and '__pycache__' not in source.parts:
+                self.file(f'{relative}/{source.relative_to(folder).as_posix()}', source)
