@@ -12,6 +12,9 @@ files with ``arg``, ``node_container`` (a ``node`` with ``composable_node``
 children) and ``load_composable_node`` (``target``, ``composable_node``), and
 ``if``/``unless`` on each of them.  Anything else is an error that names the
 file and line, never silently skipped.
+
+Over 500 lines on purpose: one walker of launch's entity kinds, each a short
+method on ``Loader``; splitting them would spread one grammar over modules.
 """
 
 from pathlib import Path
