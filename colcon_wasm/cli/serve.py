@@ -80,8 +80,9 @@ class ServeCommand(CliExtensionPoint):
             if args.rosbridge or args.foxglove else None
         if not _is_loopback(args.host):
             print(f'colcon-wasm serve: warning: listening on {args.host}: other machines can '
-                  'open the page, run your nodes and read the files of the install space',
-                  file=sys.stderr)
+                  'open the page, run your nodes, read the files of the install space and '
+                  'start its launch files, which run programs on this machine (xacro, '
+                  'ExecuteProcess)', file=sys.stderr)
         executables = install_space.executables()
         print(f'Serving {len(executables)} executable(s) of {install_space.base}')
         print(f'Runtime: {runtime_origin}')
