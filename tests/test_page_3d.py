@@ -171,6 +171,10 @@ def test_robot_demo_link_shows_the_arm_moving_in_3d():
                                      'laser_frame'}
     moved = sum((a - b) ** 2 for a, b in zip(checks['gripperBefore'], checks['gripperAfter']))
     assert moved > 1e-4, 'the arm moves: arm_motion swings its joints'
+    # the column of displays folds away (a 1024 px window wants the width), kept per install
+    fold = checks['fold']
+    assert fold['folded'] > fold['before'] + 250, fold
+    assert fold['afterReload'] is True and fold['unfolded'] is True, fold
 
 
 def test_python_launch_robot_is_seen_in_the_page_over_rosbridge(tmp_path):

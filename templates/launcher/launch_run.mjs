@@ -180,19 +180,19 @@ export class LaunchRun {
 
   /** colcon-wasm's reader made the plan: start its processes, then load its composable nodes. */
   async startPlan({ processes, loads, load_timeout: timeout }) {
-    const labels = new Map();
     const running = new Set();
     let loader = null;
+    let failed = false; // as colcon-wasm launch: 1 when a process crashed or ended with an error
     for (const proc of processes) {
-      const started = this.session.startProcess(proc.package, proc.executable, proc.args || [], {
+      this.session.startProcess(proc.package, proc.executable, proc.args || [], {
         env: proc.env || {}, launch: this.entry,
-        onExit: () => {
+        onExit: (exit) => {
           running.delete(proc.label);
+          if (exit.crashed || (exit.code && exit.reason !== 'stopped')) failed = true;
           if (loader) loader.processExited();
-          if (running.size === 0) this.finish({ code: 0, crashed: false });
+          if (running.size === 0) this.finish({ code: failed ? 1 : 0, crashed: false });
         },
       });
-      labels.set(proc.label, started);
       running.add(proc.label);
     }
     if (!loads || loads.length === 0) return;

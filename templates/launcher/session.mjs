@@ -221,7 +221,7 @@ export class Session {
   addLaunch(pkg, file, args, handle) {
     const id = this.nextId++;
     const proc = {
-      id, pkg, exe: file, args: [...args], label: `launch ${file}`, state: 'running', log: [], exit: null, handle,
+      id, pkg, exe: file, args: [...args], label: `launch ${file.split('/').pop()}`, state: 'running', log: [], exit: null, handle,
       started: performance.now(), kind: 'launch', noStdin: true,
     };
     this.processes.set(id, proc);

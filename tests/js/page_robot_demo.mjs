@@ -46,6 +46,17 @@ try {
   checks.gripperAfter = await gripper();
   checks.frames = await page.evaluate(() => window.colconWasm.views['3d'].tf.frameIds());
   await page.screenshot({ path: options.screenshot });
+  // the column of displays folds away for a wider view, and the choice is kept
+  const canvasWidth = () => page.evaluate(() => document.querySelector('.scene-stage').getBoundingClientRect().width);
+  checks.fold = { before: await canvasWidth() };
+  await page.click('#scene-fold');
+  await page.waitForTimeout(300);
+  checks.fold.folded = await canvasWidth();
+  await page.reload();
+  await page.waitForFunction(() => document.body.dataset.state === 'ready', null, { timeout: 60000 });
+  checks.fold.afterReload = await page.evaluate(() => document.querySelector('section[data-view="3d"]').classList.contains('side-folded'));
+  await page.click('#scene-fold');
+  checks.fold.unfolded = await page.evaluate(() => !document.querySelector('section[data-view="3d"]').classList.contains('side-folded'));
 } catch (e) {
   error = String(e && e.message ? e.message : e);
   try { checks.statusAtError = await page.evaluate(() => Object.fromEntries(window.colconWasm.views['3d'].displays.map((d) => [d.name, d.status()]))); } catch { /* gone */ }

@@ -53,6 +53,7 @@ export class SceneView {
       POSE_TOOLS.map((tool) => h('button', { dataset: { tool: tool.id }, title: tool.help, onclick: () => this.arm(tool) }, tool.label)),
       h('button', { onclick: () => this.scene && this.scene.setView(this.view || { distance: 6, yaw: 0.785, pitch: 0.6, focal: [0, 0, 0] }) }, 'Reset view'),
       h('span.spacer'),
+      this.foldButton = h('button#scene-fold', { onclick: () => this.foldSide(!this.element.classList.contains('side-folded')) }, ''),
       this.toolNote = h('span.tool-note'));
     this.element = h('section.view.scene-view', { dataset: { view: '3d' } },
       h('div.scene-side', {},
@@ -70,7 +71,23 @@ export class SceneView {
       new TopicFeed(session, '/tf_static', TF_TYPE, (values) => this.addTf(values, true)),
     ];
     this.restore(workspace);
+    let folded = false;
+    try { folded = localStorage.getItem(`${this.storageKey}:side`) === 'folded'; } catch { /* private mode */ }
+    this.foldSide(folded, false);
     setInterval(() => this.tick(), 500);
+  }
+
+  /**
+   * Fold the column of options, displays and TF tree away, for a wider view
+   * (a 1024 px window), or bring it back; kept per install space.
+   */
+  foldSide(folded, keep = true) {
+    this.element.classList.toggle('side-folded', folded);
+    this.foldButton.textContent = folded ? '▸ Displays' : '◂ Fold displays';
+    this.foldButton.title = folded ? 'show the options, the displays and the TF tree' : 'give the 3D view the whole width';
+    if (keep) {
+      try { localStorage.setItem(`${this.storageKey}:side`, folded ? 'folded' : 'open'); } catch { /* private mode */ }
+    }
   }
 
   /** The tab was opened: load three.js and the displays (once). */

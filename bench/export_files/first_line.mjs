@@ -1,0 +1,46 @@
+// Copyright 2026 colcon-wasm contributors
+// Licensed under the Apache License, Version 2.0
+
+// Time from navigation to the listener's first line, in headless Chromium,
+// for bench/export: a new browser profile (cold: nothing cached, and for an
+// exported site the service worker's install and reload), then a second
+// navigation in the same profile (warm). The page starts the talker and the
+// listener itself (?run= for serve, export --run for a static site).
+// Prints one JSON line: {cold_ms, warm_ms, bytes_cold, error}.
+//
+//   node first_line.mjs '<json: {url, chromium, userDataDir}>'
+
+import { chromium } from 'playwright-core';
+
+const options = JSON.parse(process.argv[2]);
+const context = await chromium.launchPersistentContext(options.userDataDir, {
+  executablePath: options.chromium,
+  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+    '--disable-background-networking', '--disable-component-update', '--disable-sync'],
+});
+const heard = () => [...(window.colconWasm?.session?.processes?.values() || [])]
+  .some((p) => p.exe === 'listener' && p.log.some((e) => e.text.includes('I heard')));
+
+async function visit() {
+  const page = await context.newPage();
+  let bytes = 0;
+  // what the page was sent (compressed where the server compressed it)
+  page.on('response', (response) => { bytes += Number(response.headers()['content-length'] || 0); });
+  const started = Date.now();
+  await page.goto(options.url);
+  await page.waitForFunction(heard, null, { timeout: 60000, polling: 20 });
+  const ms = Date.now() - started;
+  await page.close();
+  return { ms, bytes };
+}
+
+let out = {};
+try {
+  const cold = await visit();
+  const warm = await visit();
+  out = { cold_ms: cold.ms, warm_ms: warm.ms, bytes_cold: cold.bytes, error: null };
+} catch (e) {
+  out = { error: String(e && e.message ? e.message : e) };
+}
+await context.close();
+process.stdout.write(`${JSON.stringify(out)}\n`);
