@@ -10,7 +10,9 @@
 //
 //   node first_line.mjs '<json: {url, chromium, userDataDir}>'
 
-import { chromium } from 'playwright-core';
+// tests/js's playwright-core (npm ci there; it downloads no browser)
+const modules = new URL('../../tests/js/node_modules/', import.meta.url);
+const { chromium } = await import(new URL('playwright-core/index.mjs', modules).href);
 
 const options = JSON.parse(process.argv[2]);
 const context = await chromium.launchPersistentContext(options.userDataDir, {
