@@ -10,16 +10,11 @@
 //
 //   node first_line.mjs '<json: {url, chromium, userDataDir}>'
 
-// tests/js's playwright-core (npm ci there; it downloads no browser)
-const modules = new URL('../../tests/js/node_modules/', import.meta.url);
-const { chromium } = await import(new URL('playwright-core/index.mjs', modules).href);
+// tests/js's Chromium launcher (its playwright-core: npm ci there; it downloads no browser)
+import { launchChromiumProfile } from '../../tests/js/chromium.mjs';
 
 const options = JSON.parse(process.argv[2]);
-const context = await chromium.launchPersistentContext(options.userDataDir, {
-  executablePath: options.chromium,
-  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-    '--disable-background-networking', '--disable-component-update', '--disable-sync'],
-});
+const context = await launchChromiumProfile(options.chromium, options.userDataDir);
 const heard = () => [...(window.colconWasm?.session?.processes?.values() || [])]
   .some((p) => p.exe === 'listener' && p.log.some((e) => e.text.includes('I heard')));
 

@@ -11,15 +11,11 @@
 //
 //   node scene_bench.mjs '<json: {url, chromium, seconds}>'
 
-const modules = new URL('../../tests/js/node_modules/', import.meta.url);
-const { chromium } = await import(new URL('playwright-core/index.mjs', modules).href);
+// tests/js's Chromium launcher (its playwright-core: npm ci there; it downloads no browser)
+const { launchChromium } = await import(new URL('../../tests/js/chromium.mjs', import.meta.url).href);
 
 const options = JSON.parse(process.argv[2]);
-const browser = await chromium.launch({
-  executablePath: options.chromium,
-  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-    '--disable-background-networking', '--disable-component-update', '--disable-sync'],
-});
+const browser = await launchChromium(options.chromium);
 const out = {};
 try {
   const page = await browser.newPage({ viewport: { width: 1440, height: 900 } });

@@ -30,8 +30,8 @@ import { createInterface } from 'node:readline';
 
 import { acceptKey } from '../../packages/wasm_js/src/bridges/rosbridge/ws_node.mjs';
 
-const modules = new URL('../../tests/js/node_modules/', import.meta.url);
-const { chromium } = await import(new URL('playwright-core/index.mjs', modules).href);
+// tests/js's Chromium launcher (its playwright-core: npm ci there; it downloads no browser)
+const { launchChromium } = await import(new URL('../../tests/js/chromium.mjs', import.meta.url).href);
 
 const options = JSON.parse(process.argv[2]);
 const lines = createInterface({ input: process.stdin })[Symbol.asyncIterator]();
@@ -130,11 +130,7 @@ async function ceiling(page, bytes) {
   }
 }
 
-const browser = await chromium.launch({
-  executablePath: options.chromium,
-  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-    '--disable-background-networking', '--disable-component-update', '--disable-sync'],
-});
+const browser = await launchChromium(options.chromium);
 try {
   const page = await browser.newPage();
   await page.goto(options.url);

@@ -12,16 +12,12 @@
 
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { chromium } from 'playwright-core';
+import { launchChromiumProfile } from './chromium.mjs';
 
 const options = JSON.parse(process.argv[2]);
 const timeoutMs = options.timeoutMs || 90000;
-const browser = await chromium.launchPersistentContext(options.userDataDir, {
-  executablePath: options.chromium,
-  viewport: { width: 1440, height: 900 },
-  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-    '--disable-background-networking', '--disable-component-update', '--disable-sync'],
-});
+const browser = await launchChromiumProfile(options.chromium, options.userDataDir,
+  { viewport: { width: 1440, height: 900 } });
 const pageErrors = [];
 const checks = {};
 const stats = {};

@@ -13,18 +13,14 @@
 import { mkdirSync } from 'node:fs';
 import { join } from 'node:path';
 
-import { chromium } from 'playwright-core';
+import { launchChromium } from './chromium.mjs';
 
 const options = JSON.parse(process.argv[2]);
 const STEP_TIMEOUT = options.timeoutMs || 20000;
 mkdirSync(options.screenshots, { recursive: true });
 
 // playwright-core gives the browser a fresh temporary profile (user data dir)
-const browser = await chromium.launch({
-  executablePath: options.chromium,
-  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-    '--disable-background-networking', '--disable-component-update', '--disable-sync'],
-});
+const browser = await launchChromium(options.chromium);
 
 let shot = 0;
 let failed = false;

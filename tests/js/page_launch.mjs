@@ -10,14 +10,10 @@
 //
 //   node page_launch.mjs '<json: {url, chromium, launches}>'
 
-import { chromium } from 'playwright-core';
+import { launchChromium } from './chromium.mjs';
 
 const options = JSON.parse(process.argv[2]);
-const browser = await chromium.launch({
-  executablePath: options.chromium,
-  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-    '--disable-background-networking', '--disable-component-update', '--disable-sync'],
-});
+const browser = await launchChromium(options.chromium);
 const pageErrors = [];
 const checks = { launches: [] };
 let error = null;

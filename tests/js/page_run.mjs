@@ -9,14 +9,10 @@
 //
 //   node page_run.mjs '<json: {url, chromium, timeoutMs?}>'
 
-import { chromium } from 'playwright-core';
+import { launchChromium } from './chromium.mjs';
 
 const options = JSON.parse(process.argv[2]);
-const browser = await chromium.launch({
-  executablePath: options.chromium,
-  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-    '--disable-background-networking', '--disable-component-update', '--disable-sync'],
-});
+const browser = await launchChromium(options.chromium);
 const pageErrors = [];
 const consoleLines = [];
 let result = null;

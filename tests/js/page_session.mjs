@@ -18,15 +18,11 @@
 //          expression, evaluated in the page, is truthy; with `save` its value is in `saved`
 //        | {screenshot: PATH, width?, height?}: the page at that window size
 
-import { chromium } from 'playwright-core';
+import { launchChromium } from './chromium.mjs';
 
 const options = JSON.parse(process.argv[2]);
 const timeoutMs = options.timeoutMs || 60000;
-const browser = await chromium.launch({
-  executablePath: options.chromium,
-  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-    '--disable-background-networking', '--disable-component-update', '--disable-sync'],
-});
+const browser = await launchChromium(options.chromium);
 const pageErrors = [];
 const ids = {};
 const saved = {};
