@@ -180,12 +180,7 @@ export class Session {
     const info = this.workspace.packages.find((p) => p.name === pkg)?.executables.find((e) => e.name === exe);
     if (!info) throw new Error(`there is no executable ${pkg}/${exe} in this install space`);
     if (info.python) return this.startPythonEntryPoint(pkg, info, args, extra);
-    const id = this.nextId++;
-    const proc = {
-      id, pkg, exe, args: [...args], label: `${exe}-${id}`, state: 'starting', log: [], exit: null, handle: null,
-      started: performance.now(), launch: extra.launch || null, onExit: extra.onExit || null,
-    };
-    this.processes.set(id, proc);
+    const proc = this.newProcess(pkg, exe, args, extra);
     this.addLog(proc, { severity: 'SYSTEM', text: `starting ${pkg}/${exe} ${args.join(' ')}`.trim() });
     const view = this.installView();
     if (view.mounts.length && !(this.Runtime.features && this.Runtime.features.mounts)) {
@@ -219,13 +214,21 @@ export class Session {
    * @param {{stop: function(): Promise<void>}} handle
    */
   addLaunch(pkg, file, args, handle) {
+    const proc = Object.assign(this.newProcess(pkg, file, args), {
+      label: `launch ${file.split('/').pop()}`, state: 'running', handle, kind: 'launch', noStdin: true,
+    });
+    this.emit('processes');
+    return proc;
+  }
+
+  /** List a new process, numbered like ros2 launch numbers them (`talker-3`). */
+  newProcess(pkg, exe, args, extra = {}) {
     const id = this.nextId++;
     const proc = {
-      id, pkg, exe: file, args: [...args], label: `launch ${file.split('/').pop()}`, state: 'running', log: [], exit: null, handle,
-      started: performance.now(), kind: 'launch', noStdin: true,
+      id, pkg, exe, args: [...args], label: `${exe}-${id}`, state: 'starting', log: [], exit: null, handle: null,
+      started: performance.now(), launch: extra.launch || null, onExit: extra.onExit || null,
     };
     this.processes.set(id, proc);
-    this.emit('processes');
     return proc;
   }
 
@@ -285,12 +288,7 @@ export class Session {
    */
   spawnPythonProcess(pkg, exe, args, startText, spec, extra = {}) {
     const python = this.workspace.python || {};
-    const id = this.nextId++;
-    const proc = {
-      id, pkg, exe, args: [...args], label: `${exe}-${id}`, state: 'starting', log: [], exit: null, handle: null,
-      started: performance.now(), launch: extra.launch || null, onExit: extra.onExit || null,
-    };
-    this.processes.set(id, proc);
+    const proc = this.newProcess(pkg, exe, args, extra);
     this.addLog(proc, { severity: 'SYSTEM', text: startText.trim() });
     this.emit('processes');
     const started = (async () => {
