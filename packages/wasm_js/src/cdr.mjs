@@ -321,6 +321,8 @@ function stringCodec(bound, where) {
     read(r, path) {
       const n = r.count(path, 1);
       if (n === 0) return '';
+      // as the encoder: what the type bounds is refused, not passed on
+      if (bound !== undefined && n - 1 > bound) throw r.fail(path, `the string has ${n - 1} bytes, more than its bound of ${bound}`);
       const end = r.pos + n - 1;
       if (r.bytes[end] !== 0) throw r.fail(path, `a string of length ${n} does not end with NUL`);
       const s = utf8Decoder.decode(r.bytes.subarray(r.pos, end));
@@ -348,6 +350,7 @@ function wstringCodec(bound, where) {
     },
     read(r, path) {
       const n = r.count(path, 4);
+      if (bound !== undefined && n > bound) throw r.fail(path, `the wstring has ${n} characters, more than its bound of ${bound}`);
       const units = new Array(n);
       for (let i = 0; i < n; i++) {
         units[i] = r.view.getUint32(r.pos, r.little) & 0xffff;
@@ -394,6 +397,7 @@ function collectionCodec(field, element, where) {
     },
     read(r, path) {
       const n = fixed !== undefined ? fixed : r.count(path, esize);
+      if (bound !== undefined && n > bound) throw r.fail(path, `has ${n} elements, more than the sequence bound of ${bound}`);
       if (TypedArray) {
         if (n === 0) return new TypedArray(0);
         r.align(esize);
