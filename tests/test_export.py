@@ -13,7 +13,9 @@ before anything is written.
 """
 
 import contextlib
+import gzip
 import json
+import re
 import socket
 import subprocess
 import sys
@@ -34,14 +36,20 @@ def _colcon_wasm(*args):
 
 
 @contextlib.contextmanager
-def static_server(folder):
-    """Serve a folder with Python's http.server on a free loopback port (no isolation headers)."""
+def static_server(folder, log=None):
+    """
+    Serve a folder with Python's http.server on a free loopback port (no isolation headers).
+
+    :param log: a file for the server's request log (one ``"GET /path HTTP/1.1" 200`` line
+      per request), or None
+    """
     with socket.socket() as s:
         s.bind(('127.0.0.1', 0))
         port = s.getsockname()[1]
     server = subprocess.Popen(
         [sys.executable, '-m', 'http.server', '--bind', '127.0.0.1', '--directory', str(folder),
-         str(port)], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+         str(port)], stdout=subprocess.DEVNULL,
+        stderr=log.open('w') if log else subprocess.DEVNULL)
     url = f'http://127.0.0.1:{port}/'
     try:
         for _ in range(100):
@@ -101,28 +109,87 @@ def test_bad_input_is_refused_before_anything_is_written(tmp_path):
     assert not fresh.exists()
 
 
+HEARD = ('[...colconWasm.session.processes.values()].some((p) => p.exe === "listener" '
+         '&& p.log.some((e) => e.text.includes("I heard")))')
+RUNNING = '[...colconWasm.session.processes.values()].map((p) => p.exe).sort().join(",")'
+ISOLATED = 'window.crossOriginIsolated && !!navigator.serviceWorker.controller'
+
+
+def _page(url, steps):
+    """Drive the page at ``url`` through ``steps`` (tests/js/page_session.mjs); its result."""
+    completed = subprocess.run(
+        ['node', str(JS / 'page_session.mjs'), json.dumps({
+            'url': url, 'chromium': CHROMIUM, 'timeoutMs': 60000, 'steps': steps})],
+        capture_output=True, text=True, timeout=240)
+    lines = completed.stdout.strip().splitlines()
+    assert lines, completed.stderr[-3000:]
+    result = json.loads(lines[-1])
+    assert result['ok'], explain_page(result) + completed.stderr[-2000:]
+    assert not result['pageErrors'], result['pageErrors']
+    return result
+
+
 def test_the_exported_demo_runs_from_a_static_host(exported):
     reason = browser_skip_reason()
     if reason:
         pytest.skip(reason)
     target, _ = exported
-    heard = ('[...colconWasm.session.processes.values()].some((p) => p.exe === "listener" '
-             '&& p.log.some((e) => e.text.includes("I heard")))')
     with static_server(target) as url:
-        completed = subprocess.run(
-            ['node', str(JS / 'page_session.mjs'), json.dumps({
-                'url': url, 'chromium': CHROMIUM, 'timeoutMs': 60000, 'steps': [
-                    {'until': 'window.crossOriginIsolated && !!navigator.serviceWorker.controller',
-                     'save': 'isolated'},
-                    {'until': heard, 'save': 'heard'},
-                    {'until': '[...colconWasm.session.processes.values()].map((p) => p.exe)'
-                              '.sort().join(",")', 'save': 'running'},
-                ]})],
-            capture_output=True, text=True, timeout=180)
-    lines = completed.stdout.strip().splitlines()
-    assert lines, completed.stderr[-3000:]
-    result = json.loads(lines[-1])
-    assert result['ok'], explain_page(result) + completed.stderr[-2000:]
+        result = _page(url, [{'until': ISOLATED, 'save': 'isolated'},
+                             {'until': HEARD, 'save': 'heard'},
+                             {'until': RUNNING, 'save': 'running'}])
     assert result['saved']['isolated'] is True
     assert result['saved']['running'] == 'listener,talker', result['saved']
-    assert not result['pageErrors'], result['pageErrors']
+
+
+def _requests(log):
+    """Drive the page at ``url`` through ``steps`` (js/page_session.mjs); return its result."""
+    return re.findall(r'"GET (\S+) HTTP/[\d.]+" \d+', log.read_text())
+
+
+def test_a_site_under_a_sub_path_downloads_compressed_once(tmp_path):
+    """
+    ``--base-url /demo/``: the site in a sub-folder of what the host serves.
+
+    A first visit fetches the executables' ``.gz`` forms (http.server
+    compresses nothing), never the plain ``.wasm``; a second visit in the same
+    browser fetches no executable at all: the service worker keeps each file
+    under its hash (files.json).
+    """
+    reason = browser_skip_reason()
+    if reason:
+        pytest.skip(reason)
+    import demo_build
+    target = tmp_path / 'host' / 'demo'
+    done = _colcon_wasm('export', str(target), '--install-base', str(demo_build.demo_install()),
+                        '--run', 'demo_nodes/talker', '--run', 'demo_nodes/listener',
+                        '--base-url', '/demo/')
+    assert done.returncode == 0, done.stderr
+    assert 'A first visit downloads' in done.stdout, done.stdout
+    assert '<base href="/demo/">' in (target / 'index.html').read_text()
+    manifest = json.loads((target / 'files.json').read_text())['files']
+    talker = manifest['ws/demo_nodes/lib/demo_nodes/talker.wasm']
+    assert gzip.decompress((target / 'ws/demo_nodes/lib/demo_nodes/talker.wasm.gz').read_bytes()) \
+        == (target / 'ws/demo_nodes/lib/demo_nodes/talker.wasm').read_bytes()
+    assert talker['gz'] < talker['size'] / 2, talker
+    log = tmp_path / 'requests.log'
+    with static_server(tmp_path / 'host', log) as url:
+        result = _page(url + 'demo/', [
+            {'until': ISOLATED, 'save': 'isolated'},
+            {'until': HEARD, 'save': 'heard'},
+            {'goto': url + 'demo/?second-visit'},
+            {'until': ISOLATED, 'save': 'isolated_again'},
+            {'until': HEARD, 'save': 'heard_again'},
+            {'until': RUNNING, 'save': 'running'}])
+    assert result['saved']['isolated_again'] is True
+    assert result['saved']['running'] == 'listener,talker', result['saved']
+    requests = _requests(log)
+    second = requests.index('/demo/?second-visit')
+    first, again = requests[:second], requests[second:]
+    executables = [r for r in first if '/lib/demo_nodes/' in r]
+    assert '/demo/ws/demo_nodes/lib/demo_nodes/talker.wasm.gz' in executables, first
+    assert not [r for r in executables if r.endswith('.wasm')], executables
+    # the worker reads the manifest anew at each visit (its fetch may come before the page's)
+    assert requests.count('/demo/files.json') >= 2, requests
+    assert not [r for r in again if '.wasm' in r or r.endswith('.js')], again
+    assert ' 404 ' not in log.read_text(), log.read_text()  # the runtime's manifest too

@@ -25,6 +25,11 @@ class ExportCommand(CliExtensionPoint):
             '--run', action='append', default=[], metavar='"PKG/EXE [ARGS]"',
             help='An executable the page starts when it opens, as ?run= does (repeatable)')
         parser.add_argument('--title', help='The page title (default: the workspace name)')
+        parser.add_argument(
+            '--base-url', metavar='/PATH/',
+            help='Where the site will live, for a host that serves it under a sub-path '
+                 '(GitHub Pages: /REPOSITORY/); the page then also works opened without '
+                 'its final slash')
 
     def main(self, *, args):  # noqa: D102
         from colcon_wasm.server import find_runtime
@@ -41,12 +46,18 @@ class ExportCommand(CliExtensionPoint):
                         runtime_dir=runtime_dir, runtime_origin=origin,
                         runtime_entry=runtime_entry(runtime_dir), page_modules_dir=bundled,
                         title=args.title)
-            count, size = export_site(site, args.target, runs=args.run)
+            done = export_site(site, args.target, runs=args.run, base_url=args.base_url)
         except (ExportError, InstallSpaceError, ServeError) as e:
             print(f'colcon-wasm export: {e}', file=sys.stderr)
             return 1
+        plain, gz, br = done.first_visit
         print(f'Exported {len(install_space.executables())} executable(s) of '
-              f'{install_space.base} into {args.target}: {count} files, {size / 1e6:.1f} MB')
+              f'{install_space.base} into {args.target}: {done.files} files, '
+              f'{done.bytes / 1e6:.1f} MB ({done.plain_bytes / 1e6:.1f} MB without the '
+              '.gz and .br forms)')
+        print(f'A first visit downloads {plain / 1e6:.2f} MB: {gz / 1e6:.2f} MB gzip, '
+              f'{br / 1e6:.2f} MB brotli (the page, its modules, the types'
+              f"{', the --run programs' if args.run else ''})")
         print(f'Serve the folder from any static host, e.g. python3 -m http.server -d '
               f'{args.target} 8000, and open http://localhost:8000/')
         return 0

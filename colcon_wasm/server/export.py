@@ -24,11 +24,20 @@ MCAP), the rosbridge relay, and Python nodes (Pyodide is not copied).
 import json
 from pathlib import Path
 import shutil
+from typing import NamedTuple
+import urllib.parse
 
 from colcon_wasm.error import ColconWasmError
+from colcon_wasm.server.export_files import compress_site
+from colcon_wasm.server.export_files import download_sizes
+from colcon_wasm.server.export_files import MANIFEST
+from colcon_wasm.server.export_files import site_size
+from colcon_wasm.server.site import GATEWAY_FILES
+from colcon_wasm.server.site import PAGE_MODULE
 
 MARKER = '.colcon-wasm-export.json'
 SERVICE_WORKER = 'coi_sw.js'
+BOOT_SCRIPT = 'static_boot.js'
 _NO_SERVER = 'an exported page has no colcon-wasm serve behind it'
 
 
@@ -68,14 +77,38 @@ def check_runs(site, runs):
                 'nothing was written')
 
 
-def export_site(site, target, *, runs=(), title=None):
+def check_base_url(base_url):
+    """
+    Return the ``--base-url`` of a site under a sub-path, ended with ``/``.
+
+    :param base_url: ``/PATH/`` or ``https://HOST/PATH/``, or None
+    :raises ExportError: for anything else, with the forms that work
+    """
+    if base_url is None:
+        return None
+    parsed = urllib.parse.urlsplit(base_url)
+    absolute = parsed.scheme in ('http', 'https') and parsed.netloc
+    if not (absolute or (not parsed.scheme and not parsed.netloc
+                         and parsed.path.startswith('/'))) \
+            or parsed.query or parsed.fragment or '..' in parsed.path.split('/'):
+        raise ExportError(
+            f"--base-url {base_url}: give the path the site lives under, from the host's root "
+            "(e.g. '/demo/' for https://USER.github.io/demo/), or a whole http(s) URL; "
+            'nothing was written')
+    return base_url if base_url.endswith('/') else base_url + '/'
+
+
+def export_site(site, target, *, runs=(), base_url=None):
     """
     Write the static site of ``site`` into ``target``.
 
     :param runs: ``PKG/EXE [ARGS]`` the page starts on load, as ``?run=`` does
+    :param base_url: where the site lives (``/PATH/``), for the page's ``<base href>``;
+      without it the site works under any path its page is opened at with a ``/`` at its end
     :returns: ``(number of files, bytes)`` written
     """
     target = Path(target)
+    base_url = check_base_url(base_url)
     check_target(target)
     check_runs(site, runs)
     if target.is_dir():
@@ -85,7 +118,9 @@ def export_site(site, target, *, runs=(), title=None):
     writer = _Writer(target)
     workspace = static_workspace(site, runs)
     site.workspace = lambda: workspace  # what the page embeds
-    writer.body('index.html', site.page({'run': list(runs)}).body)
+    boot = (site.launcher_dir / BOOT_SCRIPT).read_text(encoding='utf-8')
+    writer.body('index.html', site.page({'run': list(runs)}, root='./', base=base_url,
+                                        boot=boot).body)
     writer.body('workspace.json', json.dumps(workspace).encode())
     writer.tree('launcher', site.launcher_dir, skip=('.jinja', '.html'))
     _write_runtime(writer, site)
@@ -94,16 +129,57 @@ def export_site(site, target, *, runs=(), title=None):
     for name, share in sorted(site.install_space.share_folders().items()):
         writer.tree(f'package/{name}', share)
     _write_vendor(writer)
+    gateway = site._gateway_dir()
+    if gateway is not None:  # ?zenoh=: the page's Zenoh gateway (zenoh-pico)
+        for name in GATEWAY_FILES:
+            if (Path(gateway) / name).is_file():
+                writer.file(f'zenoh/{name}', Path(gateway) / name)
     _write_views(writer, site)
     writer.file(SERVICE_WORKER, site.launcher_dir / SERVICE_WORKER)
     writer.body(MARKER, json.dumps({'install_base': str(site.install_space.base),
-                                    'runs': list(runs)}).encode())
-    return writer.count, writer.bytes
+                                    'runs': list(runs), 'base_url': base_url}).encode())
+    files = compress_site(target)
+    count, size = site_size(target)
+    return Exported(files=count, bytes=size, plain_bytes=writer.bytes,
+                    first_visit=download_sizes(files, first_visit_paths(site, workspace, runs)))
+
+
+class Exported(NamedTuple):
+    """What an export wrote: the whole folder, and what a first visit downloads."""
+
+    files: int
+    bytes: int
+    plain_bytes: int
+    """The site without its compressed forms."""
+    first_visit: tuple
+    """``(plain, gzip, brotli)`` bytes of the page, its modules, types and ``--run`` programs."""
+
+
+def first_visit_paths(site, workspace, runs):
+    """
+    Return the site's files a first visit loads before its nodes run.
+
+    The page, the modules it imports, the workspace's type descriptions, the
+    service worker and its manifest, and each ``--run`` executable's files
+    (``.js``, ``.wasm``, a pthread ``.worker.js``).
+    """
+    paths = ['index.html', SERVICE_WORKER, MANIFEST]
+    runtime = '/' + workspace['runtime'].lstrip('./')
+    paths += [url.lstrip('/') for url in site.module_graph([PAGE_MODULE, runtime])]
+    paths += [url.lstrip('./') for url in workspace['types']]
+    for spec in runs:
+        package, _, name = spec.split(' ')[0].partition('/')
+        for p in workspace['packages']:
+            for e in p['executables']:
+                if p['name'] == package and e['name'] == name:
+                    stem = e['url'].lstrip('./')[:-len('.js')]
+                    paths += [f'{stem}.js', f'{stem}.wasm', f'{stem}.worker.js']
+    return paths
 
 
 def static_workspace(site, runs):
     """Return the workspace the exported page embeds: what needs serve is off, and says why."""
-    workspace = dict(site.workspace())
+    workspace = relative_urls(site.workspace())
     workspace['static'] = True
     workspace['autorun'] = list(runs)
     workspace['rosbridge'] = None
@@ -116,10 +192,38 @@ def static_workspace(site, runs):
     return workspace
 
 
+def relative_urls(workspace):
+    """
+    Return the workspace with the site's URLs relative to the page (``/ws/…`` → ``./ws/…``).
+
+    So the site works under any sub-path: the page resolves them against its
+    base URL (``site_url.mjs``).
+    """
+    def relative(url):
+        return '.' + url if isinstance(url, str) and url.startswith('/') else url
+    workspace = json.loads(json.dumps(workspace))
+    workspace['runtime'] = relative(workspace['runtime'])
+    workspace['types'] = [relative(u) for u in workspace['types']]
+    for package in workspace['packages']:
+        for executable in package['executables']:
+            executable['url'] = relative(executable['url'])
+    python = workspace.get('python') or {}
+    python['pyodide'] = relative(python.get('pyodide'))
+    for entry in python.get('files', []):
+        entry['url'] = relative(entry['url'])
+    if workspace.get('zenoh'):
+        workspace['zenoh']['module'] = relative(workspace['zenoh']['module'])
+    for mount in workspace.get('mounts', []):
+        mount['url'] = relative(mount['url'])
+    return workspace
+
+
 def _write_runtime(writer, site):
     """Write the runtime (``/wasm_js/``): its folder, and the page's own modules over it."""
     from colcon_wasm.server.site import PAGE_MODULES
     writer.tree('wasm_js', site.runtime_dir)
+    if site.runtime_manifest():  # its build flags (runtime.mjs reads the pthread pool size)
+        writer.file('colcon_wasm/manifest.json', site.runtime_manifest())
     for name in PAGE_MODULES:
         source = site.page_modules_dir / name
         if source.is_dir():

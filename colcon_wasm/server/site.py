@@ -320,10 +320,18 @@ class Site:
             return Content(path=resolve_under(folder, rest))
         if head == 'pyodide' and rest and self.pyodide_dir is not None:
             return Content(path=resolve_under(self.pyodide_dir, rest))
+        if head == 'colcon_wasm' and rest == ['manifest.json'] and self.runtime_manifest():
+            # the runtime's own build flags (its pthread pool size: runtime.mjs)
+            return Content(path=self.runtime_manifest(), content_type='application/json')
         if head == 'favicon.ico' and not rest:
             return Content(path=resolve_under(self.launcher_dir, ['favicon.svg']),
                            content_type='image/svg+xml')
         raise Refused(404, 'not found')
+
+    def runtime_manifest(self):
+        """Return wasm_js' colcon-wasm manifest beside the runtime's folder, or None."""
+        path = Path(self.runtime_dir).parent / 'colcon_wasm' / 'manifest.json'
+        return path if path.is_file() else None
 
     def _runtime_root(self, first_segment):
         """Return the folder a /wasm_js/ path is served from."""
@@ -368,11 +376,20 @@ class Site:
                     pending.append(target)
         return seen
 
-    def page(self, query=None):
-        """Render the launcher page with the workspace embedded."""
+    def page(self, query=None, root='/', base=None, boot=None):
+        """
+        Render the launcher page with the workspace embedded.
+
+        :param root: what the page's own URLs start with: ``/`` under serve,
+          ``./`` (relative to the page) in an exported site
+        :param base: the page's ``<base href>`` (an export's ``--base-url``), or None
+        :param boot: the script that starts an exported page (static_boot.js), inlined:
+          it preloads the modules and starts the page once it is isolated
+        """
         template = self.environment.get_template(PAGE_TEMPLATE)
         workspace = self.workspace()
-        modules = self.module_graph([PAGE_MODULE, workspace['runtime']])
+        runtime = '/' + workspace['runtime'].lstrip('/')
+        modules = [root + url[1:] for url in self.module_graph([PAGE_MODULE, runtime])]
         preload = []
         for spec in (query or {}).get('run', []):
             package, _, executable = spec.split(' ')[0].partition('/')
@@ -381,5 +398,5 @@ class Site:
                     if p['name'] == package and e['name'] == executable:
                         preload.append(e['url'][:-len('.js')] + '.wasm')
         html = template.render(title=self.title, workspace=workspace, modules=modules,
-                               preload=preload)
+                               preload=preload, root=root, base=base, boot=boot)
         return Content(body=html.encode('utf-8'), content_type='text/html; charset=utf-8')

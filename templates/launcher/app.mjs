@@ -23,6 +23,7 @@ import { SceneView } from './views/scene/scene_view.mjs';
 import { dockSplitter } from './views/splitter.mjs';
 import { ConnectionsPanel } from './views/connections.mjs';
 import { PlaybackBar } from './views/playback_bar.mjs';
+import { siteUrl } from './site_url.mjs';
 
 const workspace = JSON.parse(document.getElementById('workspace').textContent);
 const app = document.getElementById('app');
@@ -43,7 +44,7 @@ function header(session, items) {
     running.classList.toggle('ok', n > 0);
   });
   return h('header.top', {},
-    h('img.logo', { src: '/launcher/favicon.svg', alt: '' }),
+    h('img.logo', { src: siteUrl('launcher/favicon.svg'), alt: '' }),
     h('h1', {}, 'colcon-wasm launcher'),
     h('span.workspace', { title: workspace.install_base }, workspace.install_base),
     h('span.spacer'),
@@ -98,38 +99,18 @@ function runRequests() {
 }
 
 /**
- * An exported site (colcon-wasm export) on a host that sends no isolation
- * headers: its service worker (coi_sw.js) adds them; the page registers it
- * and reloads once under it. Returns true when the page reloads.
+ * An exported site (colcon-wasm export) isolates itself before this module
+ * loads (static_boot.js, inlined into its page); what it found missing is
+ * said in the page.
  */
-async function isolateStaticSite() {
-  if (!workspace.static || window.crossOriginIsolated) return false;
-  if (!('serviceWorker' in navigator) || !window.isSecureContext) {
-    workspace.isolationProblem = 'this browser gives the page no service worker (it needs https:// or '
-      + 'http://localhost), and the host sends no isolation headers';
-    return false;
-  }
-  try {
-    await navigator.serviceWorker.register(new URL('/coi_sw.js', location.href));
-    await navigator.serviceWorker.ready;
-  } catch (e) {
-    workspace.isolationProblem = `the site's service worker (coi_sw.js) did not start: ${e.message}`;
-    return false;
-  }
-  if (sessionStorage.getItem('colcon-wasm:isolating') === location.href) {
-    sessionStorage.removeItem('colcon-wasm:isolating');
-    workspace.isolationProblem = 'the page is not isolated although the site\'s service worker (coi_sw.js) '
-      + 'runs: the browser may block service workers for this site';
-    return false;
-  }
-  sessionStorage.setItem('colcon-wasm:isolating', location.href);
-  location.reload();
-  return true;
+function staticIsolationProblem() {
+  if (!workspace.static || window.crossOriginIsolated) return;
+  workspace.isolationProblem = window.colconWasmIsolation
+    || 'the page is not cross-origin isolated, and the host sends no isolation headers';
 }
 
 async function main() {
-  if (await isolateStaticSite()) return;
-  sessionStorage.removeItem('colcon-wasm:isolating');
+  staticIsolationProblem();
   const session = new Session(workspace);
   // for the browser console: colconWasm.session.runtime, .graph, .processes
   window.colconWasm = { session };

@@ -9,7 +9,7 @@
 // pause, step, seek and rate.
 
 // /clock as the Node.js player publishes it (one definition in the runtime)
-import { CLOCK_QOS, clockMessage } from '/wasm_js/bridges/record/clock.mjs';
+import { CLOCK_QOS, clockMessage } from '../wasm_js/bridges/record/clock.mjs';
 
 const RECORD_DEPTH = 1000;
 const UPLOAD_SLICE = 1 << 20;

@@ -66,7 +66,7 @@ export class LaunchRun {
     const { session } = this;
     const words = Object.entries(this.args).map(([k, v]) => `${k}:=${v}`);
     // loaded first: the channels' messages are then handled in the order they come
-    ({ processConnection: this.processConnection } = await import('/wasm_js/launch/process_protocol.mjs').catch(() => {
+    ({ processConnection: this.processConnection } = await import('../wasm_js/launch/process_protocol.mjs').catch(() => {
       throw new Error(`the wasm_js runtime (${session.workspace.runtime}) has no launch/process_protocol.mjs: `
         + 'rebuild it with colcon build --wasm --packages-select wasm_js');
     }));
@@ -172,7 +172,7 @@ export class LaunchRun {
 
   /** launch_ros' ROS node: a bus process of the page, with the page's type descriptions. */
   async link() {
-    const { startHostLink } = await import('/wasm_js/launch/host_link.mjs');
+    const { startHostLink } = await import('../wasm_js/launch/host_link.mjs');
     await this.session.ready;
     return startHostLink(this.session.runtime, this.session.typeDocuments || [],
       (stream, text) => this.log(stream, `[launch_ros] ${text}`));
@@ -196,7 +196,7 @@ export class LaunchRun {
       running.add(proc.label);
     }
     if (!loads || loads.length === 0) return;
-    const { ComposableLoader } = await import('/wasm_js/launch/composable.mjs');
+    const { ComposableLoader } = await import('../wasm_js/launch/composable.mjs');
     await this.session.ready;
     loader = new ComposableLoader({
       runtime: this.session.runtime,

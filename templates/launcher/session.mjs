@@ -5,9 +5,10 @@
 // the live graph, and the tools process (echo, publish, call) — every view
 // goes through here, so the Runtime API is used in this file only.
 
-import { TypeRegistry } from '/wasm_js/cdr.mjs';
-import { graphModel, subscriptionQos } from '/wasm_js/page/graph.mjs';
-import { mergeRemote } from '/wasm_js/bridges/rosbridge/remote_graph.mjs';
+import { TypeRegistry } from '../wasm_js/cdr.mjs';
+import { graphModel, subscriptionQos } from '../wasm_js/page/graph.mjs';
+import { mergeRemote } from '../wasm_js/bridges/rosbridge/remote_graph.mjs';
+import { siteUrl } from './site_url.mjs';
 
 const SEVERITY = /^\s*\[(DEBUG|INFO|WARN|WARNING|ERROR|FATAL)\]/;
 const MAX_LOG = 5000;
@@ -56,7 +57,7 @@ export class Session {
    * the background (`ready`), so that executables can start at once.
    */
   async start() {
-    const { Runtime } = await import(this.workspace.runtime);
+    const { Runtime } = await import(siteUrl(this.workspace.runtime));
     this.Runtime = Runtime;
     const registry = this.loadTypes();
     this.runtime = await Runtime.create({});
@@ -106,7 +107,7 @@ export class Session {
   async connectBridge(url) {
     await this.ready;
     if (this.bridge) await this.disconnectBridge();
-    const { RosbridgeClient } = await import('/wasm_js/bridges/rosbridge/client.mjs');
+    const { RosbridgeClient } = await import('../wasm_js/bridges/rosbridge/client.mjs');
     this.bridge = await RosbridgeClient.start({
       runtime: this.runtime, registry: this.registry, url, remoteGraph: true,
       log: (level, text) => (level === 'error' ? console.error : console.log)(`[rosbridge] ${text}`),
@@ -130,11 +131,11 @@ export class Session {
       throw new Error('the install space has no zenoh_wasm_gateway: build zenoh-pico in the workspace (docs/zenoh.md)');
     }
     if (this.zenoh) await this.disconnectZenoh();
-    const { parseEndpoint } = await import('/wasm_js/bridges/zenoh/link.mjs');
+    const { parseEndpoint } = await import('../wasm_js/bridges/zenoh/link.mjs');
     if (parseEndpoint(endpoint).scheme !== 'ws') throw new Error(`a page reaches a router through its WebSocket listener: ws/HOST:PORT, not ${endpoint}`);
-    const { ZenohGateway } = await import('/wasm_js/bridges/zenoh/gateway.mjs');
+    const { ZenohGateway } = await import('../wasm_js/bridges/zenoh/gateway.mjs');
     this.zenoh = await ZenohGateway.start({
-      runtime: this.runtime, registry: this.registry, endpoint, module: new URL(this.workspace.zenoh.module, location.href).href,
+      runtime: this.runtime, registry: this.registry, endpoint, module: siteUrl(this.workspace.zenoh.module),
       log: (level, text) => (level === 'error' || level === 'warning' ? console.warn : console.log)(`[zenoh] ${text}`),
       onChange: () => {
         this.emit('zenoh', this.zenoh);
@@ -192,7 +193,7 @@ export class Session {
     }
     this.emit('processes');
     const started = this.runtime.spawn({
-      url: new URL(info.url, location.href).href,
+      url: siteUrl(info.url),
       args: proc.args,
       name: proc.label,
       ...view,
@@ -295,10 +296,10 @@ export class Session {
       if (!python.pyodide) throw new Error(python.problem || 'this serve does not serve Pyodide: start it with --pyodide DIR');
       await this.ready;
       const own = await spec();
-      const { spawnPython } = await import('/wasm_js/python/spawn.mjs');
+      const { spawnPython } = await import('../wasm_js/python/spawn.mjs');
       return spawnPython(this.runtime, {
         ...own, args: proc.args, name: proc.label, env: { ...this.installView().env, ...(extra.env || {}) },
-        pyodideUrl: python.pyodide,
+        pyodideUrl: siteUrl(python.pyodide),
         types: this.typeDocuments || [],
         onLog: ({ stream, text }) => {
           this.addLog(proc, { stream, severity: severityOf(stream, text), text });
@@ -329,8 +330,8 @@ export class Session {
    * imported, read from the process' standard input (the log dock's line).
    */
   async startPythonConsole() {
-    const response = await fetch('/wasm_js/python/console.py');
-    if (!response.ok) throw new Error(`cannot load the Python console: HTTP ${response.status} for /wasm_js/python/console.py`);
+    const response = await fetch(siteUrl('wasm_js/python/console.py'));
+    if (!response.ok) throw new Error(`cannot load the Python console: HTTP ${response.status} for ${siteUrl('wasm_js/python/console.py')}`);
     return this.startPython('python_console.py', await response.text(), [], { stdin: true });
   }
 
@@ -340,7 +341,7 @@ export class Session {
    * @returns {{mounts: Array<{path: string, url: string}>, env: Object<string, string>}}
    */
   installView() {
-    const mounts = (this.workspace.mounts || []).map((m) => ({ path: m.path, url: new URL(m.url, location.href).href }));
+    const mounts = (this.workspace.mounts || []).map((m) => ({ path: m.path, url: siteUrl(m.url) }));
     const env = {};
     for (const [name, value] of Object.entries(this.workspace.environment || {})) if (value) env[name] = value;
     return { mounts, env };

@@ -17,6 +17,8 @@
 //        | {until: JS expression (true when done), timeoutMs?, save?: NAME}: waits until the
 //          expression, evaluated in the page, is truthy; with `save` its value is in `saved`
 //        | {screenshot: PATH, width?, height?}: the page at that window size
+//        | {goto: URL}: a second visit in the same tab (the profile's caches and service
+//          workers stay), then waits for the page's session as at the start
 
 import { launchChromium } from './chromium.mjs';
 
@@ -107,6 +109,10 @@ try {
       if (step.width) await page.setViewportSize({ width: step.width, height: step.height || 900 });
       await new Promise((resolve) => setTimeout(resolve, 300));
       await page.screenshot({ path: step.screenshot });
+    } else if (step.goto) {
+      await page.goto(step.goto);
+      await page.waitForFunction(() => window.colconWasm && window.colconWasm.session
+        && window.colconWasm.session.runtime, null, { timeout: timeoutMs });
     } else if (step.sleep) {
       await new Promise((resolve) => setTimeout(resolve, step.sleep));
     } else if (step.stop) {

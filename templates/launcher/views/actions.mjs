@@ -3,8 +3,8 @@
 
 // Actions: the live list and a goal form with feedback, result and cancel.
 
-import { ActionClient } from '/wasm_js/page/ros_clients.mjs';
-import { formatYaml } from '/wasm_js/page/yaml.mjs';
+import { ActionClient } from '../../wasm_js/page/ros_clients.mjs';
+import { formatYaml } from '../../wasm_js/page/yaml.mjs';
 import { breakable, h, setChildren, WHOLE_NAME } from '../dom.mjs';
 import { MessageForm } from './message_form.mjs';
 

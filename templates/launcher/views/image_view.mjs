@@ -3,7 +3,7 @@
 
 // Shows the newest sensor_msgs/Image or CompressedImage of a topic.
 
-import { compressedMimeType, imageToRgba } from '/wasm_js/page/image.mjs';
+import { compressedMimeType, imageToRgba } from '../../wasm_js/page/image.mjs';
 import { h } from '../dom.mjs';
 
 export class ImageView {

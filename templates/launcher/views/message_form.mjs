@@ -4,8 +4,8 @@
 // A form for a message value (publish, service request, action goal):
 // one input per field, or the whole message as YAML/JSON text.
 
-import { formatYaml, parseYaml } from '/wasm_js/page/yaml.mjs';
-import { toPlain } from '/wasm_js/cdr.mjs';
+import { formatYaml, parseYaml } from '../../wasm_js/page/yaml.mjs';
+import { toPlain } from '../../wasm_js/cdr.mjs';
 import { h, setChildren } from '../dom.mjs';
 
 const INTEGER = new Set(['byte', 'char', 'int8', 'uint8', 'int16', 'uint16', 'int32', 'uint32']);

@@ -4,8 +4,8 @@
 // Parameters of a node: list, get and set, over the node's rcl_interfaces
 // parameter services (as ros2 param list/get/set do).
 
-import { ParameterClient } from '/wasm_js/page/ros_clients.mjs';
-import { parseYaml } from '/wasm_js/page/yaml.mjs';
+import { ParameterClient } from '../../wasm_js/page/ros_clients.mjs';
+import { parseYaml } from '../../wasm_js/page/yaml.mjs';
 import { breakable, h, setChildren, WHOLE_NAME } from '../dom.mjs';
 
 function show(value) {

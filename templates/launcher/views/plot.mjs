@@ -3,7 +3,7 @@
 
 // A live line plot of numeric fields over time (canvas, redrawn once per frame).
 
-import { asNumber, getPath, numericPaths } from '/wasm_js/page/fields.mjs';
+import { asNumber, getPath, numericPaths } from '../../wasm_js/page/fields.mjs';
 import { h, setChildren } from '../dom.mjs';
 
 const COLORS = ['#2f7ed8', '#d0352b', '#1e9e5a', '#c98a06', '#8e44ad', '#16a2b8', '#e67e22', '#34495e'];

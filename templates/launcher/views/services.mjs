@@ -4,7 +4,7 @@
 // Services: the live list and a call form (request fields or YAML, the
 // response decoded, the round-trip time).
 
-import { formatYaml } from '/wasm_js/page/yaml.mjs';
+import { formatYaml } from '../../wasm_js/page/yaml.mjs';
 import { breakable, h, setChildren, WHOLE_NAME } from '../dom.mjs';
 import { MessageForm } from './message_form.mjs';
 

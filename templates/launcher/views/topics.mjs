@@ -6,9 +6,9 @@
 // Messages arrive in batches; decoding and drawing happen once per frame, so
 // a 1 kHz topic does not freeze the page.
 
-import { formatYaml } from '/wasm_js/page/yaml.mjs';
-import { formatBandwidth, TopicStats } from '/wasm_js/page/stats.mjs';
-import { imageKind } from '/wasm_js/page/image.mjs';
+import { formatYaml } from '../../wasm_js/page/yaml.mjs';
+import { formatBandwidth, TopicStats } from '../../wasm_js/page/stats.mjs';
+import { imageKind } from '../../wasm_js/page/image.mjs';
 import { breakable, h, setChildren, WHOLE_NAME } from '../dom.mjs';
 import { ImageView } from './image_view.mjs';
 import { MessageForm } from './message_form.mjs';

@@ -9,10 +9,11 @@ import * as THREE from 'three';
 import { STLLoader } from 'three/examples/jsm/loaders/STLLoader.js';
 import { ColladaLoader } from 'three/examples/jsm/loaders/ColladaLoader.js';
 import { OBJLoader } from 'three/examples/jsm/loaders/OBJLoader.js';
+import { siteUrl } from '../../site_url.mjs';
 
 /** The URL of a package:// (or file://, or relative) mesh URI. */
 export function meshUrl(uri) {
-  if (uri.startsWith('package://')) return `/package/${uri.slice('package://'.length)}`;
+  if (uri.startsWith('package://')) return siteUrl(`package/${uri.slice('package://'.length)}`);
   if (/^[a-z]+:\/\//i.test(uri)) {
     throw new Error(`mesh ${uri}: only package:// URIs are served to the page (package://PKG/PATH, a file of the package's share folder)`);
   }

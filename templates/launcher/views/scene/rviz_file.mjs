@@ -6,7 +6,7 @@
 // sizes, and the Orbit view — as the 3D view's settings. A display class it
 // cannot show is listed with its name, not dropped.
 
-import { parseYaml } from '/wasm_js/page/yaml.mjs';
+import { parseYaml } from '../../../wasm_js/page/yaml.mjs';
 
 /** rviz_default_plugins/<Class> -> the 3D view's display kind. */
 export const RVIZ_CLASSES = {

@@ -12,6 +12,7 @@
 import { h, setChildren } from '../../dom.mjs';
 import { TfBuffer } from './tf_buffer.mjs';
 import { TopicFeed } from './topic_feed.mjs';
+import { siteUrl } from '../../site_url.mjs';
 import { DisplayList } from './display_list.mjs';
 import { readRviz } from './rviz_file.mjs';
 import { PoseTool, POSE_TOOLS } from './pose_tool.mjs';
@@ -213,7 +214,7 @@ export class SceneView {
 
   /** Open an .rviz file of the install space: package://PKG/PATH or a site URL. */
   async openRvizUrl(uri) {
-    const url = uri.startsWith('package://') ? `/package/${uri.slice('package://'.length)}` : uri;
+    const url = uri.startsWith('package://') ? siteUrl(`package/${uri.slice('package://'.length)}`) : uri;
     const response = await fetch(url);
     if (!response.ok) {
       setChildren(this.notes, h('div.status.error', {}, `${uri}: ${response.status} ${(await response.text()).slice(0, 200)}`));

@@ -7,7 +7,7 @@
 // that QoS changes, and says why nothing comes (no publisher, another type,
 // a type the install space does not describe) in rviz's words.
 
-import { subscriptionQos } from '/wasm_js/page/graph.mjs';
+import { subscriptionQos } from '../../../wasm_js/page/graph.mjs';
 
 function qosKey(qos) {
   return `${qos.reliability}/${qos.durability}`;

@@ -12,6 +12,7 @@ import * as THREE from 'three';
 import URDFLoader from 'urdf-loader';
 import { Display } from '../display.mjs';
 import { loadMeshUrl } from '../mesh_loader.mjs';
+import { siteUrl } from '../../../site_url.mjs';
 
 export class RobotModelDisplay extends Display {
   static kind = 'RobotModel';
@@ -47,7 +48,7 @@ export class RobotModelDisplay extends Display {
     this.meshErrors = [];
     this.parseError = null;
     const loader = new URDFLoader();
-    loader.packages = (pkg) => `/package/${pkg}`;
+    loader.packages = (pkg) => siteUrl(`package/${pkg}`);
     this.pendingMeshes = 0;
     loader.loadMeshCb = (url, manager, material, done) => {
       this.pendingMeshes++;
