@@ -181,7 +181,7 @@ async function main() {
   };
   process.on('uncaughtException', (e) => record('exception', `uncaught: ${e && e.stack ? e.stack : e}`));
   process.on('unhandledRejection', (e) => record('exception', `unhandled rejection: ${e && e.stack ? e.stack : e}`));
-  const harness = await target.setup({ types: args.types, repo });
+  const harness = await target.setup({ types: args.types, repo, finding: (kind, message) => record(kind, message) });
   const watchdog = startWatchdog(args.timeoutMs, findingsDir, args.target);
   const classes = new Map();
   let inputs = 0;

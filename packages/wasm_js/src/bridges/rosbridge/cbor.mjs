@@ -181,6 +181,9 @@ export function encodeCbor(value) {
 }
 
 /** Bytes that are not CBOR this decoder reads. */
+/** How deep arrays, maps and tags may nest in a decoded item (deeper is a CborError, not a stack overflow). */
+const MAX_DEPTH = 256;
+
 export class CborError extends Error {
   constructor(message) {
     super(message);
@@ -197,8 +200,15 @@ export class CborError extends Error {
 export function decodeCbor(bytes) {
   const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
   let pos = 0;
+  let depth = 0;
   const need = (n) => {
-    if (pos + n > bytes.length) throw new CborError(`CBOR ends early (at byte ${pos}, ${n} more needed)`);
+    // a 64-bit length (a BigInt) never fits
+    if (typeof n === 'bigint' || pos + n > bytes.length) throw new CborError(`CBOR ends early (at byte ${pos}, ${n} more needed)`);
+  };
+  const count = (info) => {
+    const n = arg(info);
+    if (typeof n === 'bigint') throw new CborError(`a CBOR array or map of ${n} items is longer than the message (at byte ${pos})`);
+    return n;
   };
   const arg = (info) => {
     if (info < 24) return info;
@@ -237,6 +247,15 @@ export function decodeCbor(bytes) {
   };
   const item = () => {
     need(1);
+    if (depth >= MAX_DEPTH) throw new CborError(`CBOR nested deeper than ${MAX_DEPTH} levels (at byte ${pos})`);
+    depth++;
+    try {
+      return itemAt();
+    } finally {
+      depth--;
+    }
+  };
+  const itemAt = () => {
     const h = bytes[pos++];
     const major = h >> 5;
     const info = h & 31;
@@ -246,15 +265,22 @@ export function decodeCbor(bytes) {
       case 2: return chunks(2, info).slice();
       case 3: return dec.decode(chunks(3, info));
       case 4: {
-        const n = arg(info);
+        const n = count(info);
         const out = [];
         if (n < 0) { while (bytes[pos] !== 0xff) { out.push(item()); need(1); } pos++; } else for (let i = 0; i < n; i++) out.push(item());
         return out;
       }
       case 5: {
-        const n = arg(info);
+        const n = count(info);
         const out = {};
-        const entry = () => { const k = item(); out[typeof k === 'string' ? k : String(k)] = item(); };
+        const entry = () => {
+          const k = item();
+          const key = typeof k === 'string' ? k : String(k);
+          const v = item();
+          // an own property, as JSON.parse makes it: '__proto__' must not set the prototype
+          if (key === '__proto__') Object.defineProperty(out, key, { value: v, enumerable: true, writable: true, configurable: true });
+          else out[key] = v;
+        };
         if (n < 0) { while (bytes[pos] !== 0xff) { entry(); need(1); } pos++; } else for (let i = 0; i < n; i++) entry();
         return out;
       }

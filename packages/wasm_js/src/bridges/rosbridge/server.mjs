@@ -151,7 +151,18 @@ export class RosbridgeServer {
         + '(--rosbridge-max-message-bytes); it was dropped'),
     });
     if (!conn) return;
-    session = new Session({ core: this.core, conn, id: this._nextId++, peer });
+    session = this.attach(conn, peer);
+  }
+
+  /**
+   * Serve one client on an open connection: its messages go to the
+   * session's `receive()` (also the entry point of tests/fuzz's driver).
+   * @param {object} conn a WebSocket (send, close, terminate, bufferedAmount, ondrain, onmessage, onclose)
+   * @param {string} peer the client's address, for logs
+   * @returns {Session}
+   */
+  attach(conn, peer) {
+    const session = new Session({ core: this.core, conn, id: this._nextId++, peer });
     installTopics(session);
     installServices(session);
     installActions(session);
@@ -165,6 +176,7 @@ export class RosbridgeServer {
       session.end();
       if (this.log) this.log('info', `client ${session.id} disconnected (${e.code}${e.reason ? ` ${e.reason}` : ''}; ${this.sessions.size} connected)`);
     };
+    return session;
   }
 
   /** Counters: clients served, cut off, messages dropped as stale, ... */

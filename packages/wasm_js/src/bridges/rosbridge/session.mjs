@@ -132,7 +132,7 @@ export class Session {
     }
     const handler = this.ops.get(msg.op);
     if (!handler) {
-      this.status('error', `unknown operation ${JSON.stringify(msg.op)}: the operations are ${CLIENT_OPS.join(', ')}`, id);
+      this.status('error', `unknown operation ${stringifyJson(msg.op).slice(0, 100)}: the operations are ${CLIENT_OPS.join(', ')}`, id);
       return;
     }
     if (msg.fragment_size !== undefined && msg.op !== 'subscribe') {
