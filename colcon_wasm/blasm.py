@@ -10,7 +10,10 @@ the whole workspace, and every argument blasm does not know is passed to
 `colcon build`. `-p` ("install emscripten python" in the thesis) checks that
 Pyodide, which runs the Python nodes, is installed (and says how to get it
 when not); `colcon build --wasm` packs the `ament_python` packages for it
-in every build (docs/python.md).
+in every build (docs/python.md). `-e DIR` (not in the thesis) exports the
+install space as a static site after a successful build, with `colcon-wasm
+export` (docs/export.md); each `-r 'PKG/EXE [ARGS]'` is an executable the
+page starts when it opens.
 """
 
 import argparse
@@ -51,6 +54,14 @@ def create_parser():
                              '(ament_python packages are packed for it)')
     parser.add_argument('-v', action='store_true', dest='verbose',
                         help='verbose')
+    parser.add_argument('-e', metavar='DIR', dest='export',
+                        help='after a successful build, export the install '
+                             'space as a static site into DIR (colcon-wasm '
+                             'export)')
+    parser.add_argument('-r', metavar="'PKG/EXE [ARGS]'", dest='run',
+                        action='append', default=[],
+                        help='with -e: an executable the exported page '
+                             'starts when it opens (repeatable)')
     return parser
 
 
@@ -78,6 +89,46 @@ def colcon_arguments(options, extra):
         # --cmake-args takes the rest of the line: keep it last
         extra += ['--cmake-args', '-DCMAKE_VERBOSE_MAKEFILE=ON']
     return args + extra
+
+
+def install_base(extra):
+    """
+    Get the install base the build writes: colcon's `--install-base`, if passed.
+
+    :param list extra: arguments passed through to colcon
+    :rtype: str
+    """
+    parser = argparse.ArgumentParser(add_help=False, allow_abbrev=False)
+    parser.add_argument('--install-base', default=INSTALL_BASE)
+    return parser.parse_known_args(extra)[0].install_base
+
+
+def export(target, base, runs):
+    """
+    Export an install space as a static site with `colcon-wasm export`.
+
+    :param str target: the folder to write the site into
+    :param str base: the install space
+    :param list runs: the executables the page starts ('PKG/EXE [ARGS]')
+    :returns: the exit code of the export (nonzero when it failed)
+    """
+    from colcon_wasm.cli import main as colcon_wasm
+    args = ['export', target, '--install-base', base] + [f'--run={r}' for r in runs]
+    print('[BLASM]: colcon-wasm ' + ' '.join(shlex.quote(a) for a in args))
+    try:
+        rc = colcon_wasm(args)
+    except SystemExit as e:
+        # a ColconWasmError's one line, or argparse's usage error (printed)
+        if isinstance(e.code, str):
+            print(e.code, file=sys.stderr)
+            rc = 1
+        else:
+            rc = e.code or 0
+    if rc:
+        print(f"[BLASM]: -e: exporting '{base}' into '{target}' failed (exit "
+              f'code {rc}, the reason is above); the build itself succeeded',
+              file=sys.stderr)
+    return rc
 
 
 def clean(workspace):
@@ -118,6 +169,10 @@ def main(argv=None, *, run_colcon=None):
     :returns: the exit code
     """
     options, extra = create_parser().parse_known_args(argv)
+    if options.run and not options.export:
+        print('[BLASM]: -r needs -e DIR: it names an executable the exported '
+              'page starts', file=sys.stderr)
+        return 2
     if options.python and not check_pyodide():
         return 2
     workspace = Path.cwd()
@@ -136,6 +191,10 @@ def main(argv=None, *, run_colcon=None):
     args = colcon_arguments(options, extra)
     print('[BLASM]: colcon ' + ' '.join(shlex.quote(a) for a in args))
     if run_colcon is None:
-        from colcon_core.command import main as run_colcon
-        return run_colcon(argv=args)
-    return run_colcon(args)
+        from colcon_core.command import main as colcon
+        rc = colcon(argv=args)
+    else:
+        rc = run_colcon(args)
+    if rc or not options.export:
+        return rc
+    return export(options.export, install_base(extra), options.run)

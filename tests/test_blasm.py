@@ -3,6 +3,7 @@
 
 """`blasm` keeps the thesis' options on top of `colcon build --wasm`."""
 
+import json
 import os
 from pathlib import Path
 import subprocess
@@ -12,6 +13,7 @@ from colcon_helpers import node
 from colcon_helpers import tool
 from colcon_wasm.blasm import colcon_arguments
 from colcon_wasm.blasm import create_parser
+from colcon_wasm.blasm import install_base
 
 REPO = Path(__file__).resolve().parents[1]
 
@@ -41,6 +43,12 @@ def test_option_translation():
         '--packages-ignore', 'a', 'b', '--event-handlers', 'console_direct+',
         '--wasm-debug', '--merge-install', '--cmake-args',
         '-DCMAKE_VERBOSE_MAKEFILE=ON']
+
+
+def test_export_reads_the_install_base_colcon_gets():
+    assert install_base(['--merge-install']) == 'install_wasm'
+    assert install_base(['--install-base', 'elsewhere', '--merge-install']) == 'elsewhere'
+    assert install_base(['--install-base=elsewhere']) == 'elsewhere'
 
 
 def test_python_checks_for_pyodide(tmp_path):
@@ -87,3 +95,41 @@ def test_debug_build_select_and_clean(tmp_path):
     for name in ('build_wasm', 'install_wasm', 'log'):
         assert not (ws / name).exists(), name
     assert (ws / 'src').is_dir()
+
+
+def test_export_after_the_build(tmp_path):
+    ws = copy_fixture('ws_basic', tmp_path)
+    result = blasm(ws, '-h')
+    assert '-e DIR' in result.stdout and "-r 'PKG/EXE [ARGS]'" in result.stdout
+    result = blasm(ws, '-r', 'calc_app/calc')
+    assert result.returncode == 2
+    assert '[BLASM]: -r needs -e DIR' in result.stdout
+    assert not (ws / 'install_wasm').exists()  # refused before building
+    result = blasm(ws, '-u', 'calc_app', '-e', 'site', '-r', 'calc_app/calc 6 3',
+                   '--parallel-workers', '1')
+    assert result.returncode == 0, result.stdout[-3000:]
+    assert '[BLASM]: colcon-wasm export site --install-base install_wasm ' \
+        "'--run=calc_app/calc 6 3'" in result.stdout
+    assert 'Exported 2 executable(s) of ' in result.stdout  # colcon-wasm export's own line
+    site = ws / 'site'
+    assert '<html' in (site / 'index.html').read_text()
+    workspace = json.loads((site / 'workspace.json').read_text())
+    assert workspace['static'] is True
+    assert workspace['autorun'] == ['calc_app/calc 6 3']
+    for name in ('calc.wasm', 'calc.js', 'calc.worker.js'):
+        assert (site / 'ws' / 'calc_app' / 'bin' / name).read_bytes() == \
+            (ws / 'install_wasm' / 'calc_app' / 'bin' / name).read_bytes(), name
+    assert (site / 'coi_sw.js').is_file()
+    # a failed export: its reason, blasm's line, nonzero, nothing written
+    result = blasm(ws, '-u', 'calc_app', '-e', 'other', '-r', 'calc_app/nope')
+    assert result.returncode == 1, result.stdout[-3000:]
+    assert 'colcon-wasm export: --run calc_app/nope: there is no executable ' \
+        "'calc_app/nope' in the install space" in result.stdout
+    assert "[BLASM]: -e: exporting 'install_wasm' into 'other' failed (exit code 1" \
+        in result.stdout
+    assert not (ws / 'other').exists()
+    # a failed build: no export
+    result = blasm(ws, '-u', 'no_such_package', '-e', 'third')
+    assert result.returncode == 1
+    assert 'colcon-wasm export' not in result.stdout
+    assert not (ws / 'third').exists()
