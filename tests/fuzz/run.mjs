@@ -13,7 +13,8 @@
  * Options: --corpus DIR (default tests/fuzz_corpus/NAME), --findings DIR
  * (where failing inputs are written), --timeout-ms MS (per input, 2000),
  * --check-every N (inputs between two checks that a valid input still
- * works, 50), --types FILE (a types.json for the registry).
+ * works, 50), --types FILE (a types.json for the registry), --schemas FILE
+ * (the servers' complete definitions; tests/fuzz/fuzz_types.py writes both).
  *
  * A target's `setup()` returns a harness: `one(bytes)` feeds one input
  * through the entry point the server uses per message and returns the
@@ -73,7 +74,11 @@ export function classify(text) {
   return String(text).replace(/"(?:[^"\\]|\\.)*"|'[^']*'/g, 'Q').replace(/\d+/g, 'N').slice(0, 160);
 }
 
-/** A watchdog thread: kills the process when one input runs past the timeout (a stuck event loop). */
+/**
+ * A watchdog thread: kills the process when the event loop is stuck past the
+ * timeout while an input runs (a synchronous loop that never ends); an
+ * input whose promises take too long is caught by withTimeout instead.
+ */
 function startWatchdog(timeoutMs, findingsDir, target) {
   const shared = new SharedArrayBuffer(12 + MAX_INPUT);
   const words = new Int32Array(shared, 0, 3);
@@ -86,6 +91,7 @@ function startWatchdog(timeoutMs, findingsDir, target) {
     const bytes = new Uint8Array(workerData.shared, 12);
     let seen = -1, since = Date.now();
     setInterval(() => {
+      // words[0] is the main thread's heartbeat: it stops only when its event loop is stuck
       const n = Atomics.load(words, 0);
       const busy = Atomics.load(words, 1);
       if (n !== seen || !busy) { seen = n; since = Date.now(); return; }
@@ -99,6 +105,7 @@ function startWatchdog(timeoutMs, findingsDir, target) {
     }, 50);`;
   const worker = new Worker(code, { eval: true, workerData: { shared, timeoutMs, findingsDir, target } });
   worker.unref();
+  setInterval(() => Atomics.add(words, 0, 1), 20).unref();
   return {
     begin(input) {
       const n = Math.min(input.length, MAX_INPUT);
@@ -158,7 +165,7 @@ async function main() {
   const target = await import(pathToFileURL(join(here, 'targets', `${args.target}.mjs`)).href);
   if (args.capture) {
     // write the seed corpus: what the target records of real traffic
-    const seeds = await target.capture({ types: args.types, repo });
+    const seeds = await target.capture({ types: args.types, schemas: args.schemas, repo });
     mkdirSync(corpusDir, { recursive: true });
     for (const { name, bytes } of seeds) writeFileSync(join(corpusDir, name), bytes);
     process.stdout.write(`${JSON.stringify({ target: args.target, captured: seeds.length, bytes: seeds.reduce((s, x) => s + x.bytes.length, 0) })}\n`);
@@ -181,7 +188,7 @@ async function main() {
   };
   process.on('uncaughtException', (e) => record('exception', `uncaught: ${e && e.stack ? e.stack : e}`));
   process.on('unhandledRejection', (e) => record('exception', `unhandled rejection: ${e && e.stack ? e.stack : e}`));
-  const harness = await target.setup({ types: args.types, repo, finding: (kind, message) => record(kind, message) });
+  const harness = await target.setup({ types: args.types, schemas: args.schemas, repo, finding: (kind, message) => record(kind, message) });
   const watchdog = startWatchdog(args.timeoutMs, findingsDir, args.target);
   const classes = new Map();
   let inputs = 0;

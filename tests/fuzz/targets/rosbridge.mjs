@@ -86,7 +86,7 @@ export function outcomeOf(sent) {
     if (typeof m !== 'string') { kinds.add('binary'); continue; }
     try {
       const o = JSON.parse(m);
-      kinds.add(o.op === 'status' ? `status ${o.level} ${String(o.msg).slice(0, 90)}` : `${o.op}${o.result === false ? ' failed' : ''}`);
+      kinds.add(o.op === 'status' ? `status ${o.level} ${String(o.msg ?? o.message).slice(0, 90)}` : `${o.op}${o.result === false ? ' failed' : ''}`);
     } catch {
       kinds.add('text');
     }
@@ -105,12 +105,12 @@ const until = async (predicate, ms, what) => {
 };
 
 /** Start a server on a Runtime; `finding(kind, text)` hears internal errors logged by it. */
-async function start(types, finding) {
+async function start(types, schemas, finding) {
   if (!types) throw new Error('the rosbridge target needs --types (the types.json of cdr_test_msgs)');
   const registry = new TypeRegistry([JSON.parse(readFileSync(types, 'utf-8'))]);
   const runtime = await Runtime.create({ warmWorkers: 0 });
   const server = await RosbridgeServer.start({
-    runtime, registry, host: '127.0.0.1', port: 0,
+    runtime, registry, schemas, host: '127.0.0.1', port: 0,
     limits: { maxMessageBytes: 1 << 20, callTimeoutMs: 300 },
     log: (level, text) => {
       if (level === 'debug' && / failed: /.test(text) && INTERNAL.test(text) && finding) finding('internal', text);
@@ -120,8 +120,8 @@ async function start(types, finding) {
 }
 
 /** The seed corpus: a scripted session's requests and the server's answers. */
-export async function capture({ types }) {
-  const { runtime, server, registry } = await start(types, null);
+export async function capture({ types, schemas }) {
+  const { runtime, server, registry } = await start(types, schemas, null);
   const a = new RecordingSocket();
   const b = new RecordingSocket();
   const sa = server.attach(a, 'capture-a');
@@ -180,8 +180,8 @@ export async function capture({ types }) {
   return seeds;
 }
 
-export async function setup({ types, finding }) {
-  const { runtime, server } = await start(types, finding);
+export async function setup({ types, schemas, finding }) {
+  const { runtime, server } = await start(types, schemas, finding);
   const fuzzed = new RecordingSocket();
   const watcher = new RecordingSocket();
   const session = server.attach(fuzzed, 'fuzz');

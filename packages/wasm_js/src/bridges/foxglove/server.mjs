@@ -122,6 +122,18 @@ export class FoxgloveServer {
       this.log('warning', `refused a client from ${peer}: it offered none of the subprotocols ${SUBPROTOCOLS.join(', ')}`);
       return;
     }
+    this.attach(conn, peer);
+  }
+
+  /**
+   * Serve one client on an open connection (after the subprotocol was
+   * agreed): its messages go to the session's `receive()` (also the entry
+   * point of tests/fuzz's driver); the server's greeting goes out first.
+   * @param {object} conn a WebSocket (send, close, bufferedAmount, onmessage, onclose; `protocol`)
+   * @param {string} peer the client's address, for logs
+   * @returns {Session}
+   */
+  attach(conn, peer) {
     const session = new Session({ server: this, conn, id: this._nextId++, peer });
     this.sessions.add(session);
     this.log('info', `client ${session.id} connected from ${peer} (${conn.protocol}; ${this.sessions.size} connected)`);
@@ -142,6 +154,7 @@ export class FoxgloveServer {
     this._refresh();
     session.sendJson({ op: 'advertise', channels: [...this.catalog.channels.values()] });
     session.sendJson({ op: 'advertiseServices', services: [...this.catalog.services.values()] });
+    return session;
   }
 
   _graphChanged() {

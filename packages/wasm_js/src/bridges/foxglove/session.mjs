@@ -26,6 +26,20 @@ const list = (msg, key, what) => {
   return msg[key];
 };
 
+/** A list whose items are JSON objects (subscriptions, channels, parameters). */
+const objects = (msg, key, what) => {
+  const items = list(msg, key, what);
+  if (items.some((x) => x === null || typeof x !== 'object' || Array.isArray(x))) throw new RequestError(`${msg.op} needs '${key}': an array of ${what}`);
+  return items;
+};
+
+/** A list of strings (parameter names). */
+const strings = (msg, key, what) => {
+  const items = list(msg, key, what);
+  if (items.some((x) => typeof x !== 'string')) throw new RequestError(`${msg.op} needs '${key}': an array of ${what} (strings)`);
+  return items;
+};
+
 /** The session of one WebSocket connection. */
 export class Session {
   /**
@@ -132,7 +146,7 @@ export class Session {
 
   async op_subscribe(msg) {
     const { catalog, link } = this.server;
-    for (const s of list(msg, 'subscriptions', '{id, channelId}')) {
+    for (const s of objects(msg, 'subscriptions', '{id, channelId}')) {
       if (!Number.isInteger(s.id) || !Number.isInteger(s.channelId)) {
         throw new RequestError('each subscription needs an integer id and channelId');
       }
@@ -178,7 +192,7 @@ export class Session {
 
   async op_advertise(msg) {
     const { converter, link } = this.server;
-    for (const c of list(msg, 'channels', '{id, topic, encoding, schemaName}')) {
+    for (const c of objects(msg, 'channels', '{id, topic, encoding, schemaName}')) {
       if (!Number.isInteger(c.id) || typeof c.topic !== 'string' || typeof c.schemaName !== 'string') {
         throw new RequestError('each channel needs an integer id, a topic and a schemaName (e.g. std_msgs/msg/String)');
       }
@@ -271,7 +285,7 @@ export class Session {
   }
 
   async op_getParameters(msg) {
-    const names = list(msg, 'parameterNames', 'parameter names (/node.param)');
+    const names = strings(msg, 'parameterNames', 'parameter names (/node.param)');
     const { parameters, errors } = await this._parameters().get(names);
     for (const e of errors) this.status(StatusLevel.ERROR, `getParameters: ${e}`, typeof msg.id === 'string' ? msg.id : undefined);
     const out = { op: 'parameterValues', parameters };
@@ -280,7 +294,8 @@ export class Session {
   }
 
   async op_setParameters(msg) {
-    const params = list(msg, 'parameters', '{name, value}');
+    const params = objects(msg, 'parameters', '{name, value}');
+    if (params.some((x) => typeof x.name !== 'string')) throw new RequestError("setParameters needs a 'name' string in each parameter");
     const p = this._parameters();
     const errors = await p.set(params);
     for (const e of errors) this.status(StatusLevel.ERROR, `setParameters: ${e}`, typeof msg.id === 'string' ? msg.id : undefined);
@@ -292,7 +307,7 @@ export class Session {
 
   op_subscribeParameterUpdates(msg) {
     this._parameters();
-    for (const n of list(msg, 'parameterNames', 'parameter names')) this.parameterNames.add(n);
+    for (const n of strings(msg, 'parameterNames', 'parameter names')) this.parameterNames.add(n);
     this.server.watchParameters(); // followed from the start; again if that failed
   }
 

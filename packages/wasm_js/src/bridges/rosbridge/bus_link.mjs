@@ -186,8 +186,16 @@ export class BusLink {
       this._publishers.set(key, entry);
       entry.handle.catch(() => this._publishers.delete(key));
     }
-    const handle = await entry.handle;
+    // counted before the wait: a release() meanwhile (the same client advertising the
+    // topic again) must not close the handle this call is about to hand out
     entry.refs++;
+    let handle;
+    try {
+      handle = await entry.handle;
+    } catch (e) {
+      entry.refs--;
+      throw e;
+    }
     if (!entry.batcher) entry.batcher = this._batcher(topic, handle);
     let released = false;
     return {
