@@ -12,6 +12,9 @@
 
 import { Kind, parseToken } from './keys.mjs';
 
+/** How many different malformed tokens are named in the log at most. */
+const MAX_NAMED = 32;
+
 /** Node fqn from namespace and name. */
 export function fqn(namespace, node) {
   return `${namespace === '/' || !namespace ? '' : namespace}/${node}`;
@@ -49,9 +52,12 @@ export class RemoteGraph {
       entity = parseToken(key);
     } catch (error) {
       this.malformed += 1;
-      if (!this._named.has(error.message)) {
+      // each kind of error named once; a peer that sends ever new bad keys is not remembered
+      // past MAX_NAMED (the count goes on)
+      if (!this._named.has(error.message) && this._named.size < MAX_NAMED) {
         this._named.add(error.message);
-        this.log('warning', `ignoring a liveliness token: ${error.message}`);
+        this.log('warning', `ignoring a liveliness token: ${error.message}`
+          + (this._named.size === MAX_NAMED ? ` (the next malformed tokens are counted, not named: ${MAX_NAMED} were)` : ''));
       }
       return;
     }
