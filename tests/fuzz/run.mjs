@@ -239,10 +239,11 @@ async function main() {
     const dec = new TextDecoder();
     const jsonValues = target.options && target.options.json ? corpus.map((c) => { try { return JSON.parse(dec.decode(c)); } catch { return null; } }).filter((v) => v !== null) : [];
     for (const seed of corpus) await feed(seed);
+    const seeded = corpus.length;
     const rng = new Random(args.seed);
     const deadline = args.seconds ? started + args.seconds * 1000 : Infinity;
     const count = args.count ?? (args.seconds ? Infinity : 1000);
-    while (inputs < count + corpus.length && Date.now() < deadline && findings.length < 10) {
+    while (inputs < count + seeded && Date.now() < deadline && findings.length < 10) {
       const input = nextInput(rng, corpus, { json: target.options && target.options.json, jsonValues });
       if (await feed(input)) corpus.push(input);
       if (inputs % args.checkEvery === 0) await check();

@@ -116,6 +116,15 @@ export function formatYaml(value, { maxArray = 64 } = {}) {
 
 // ------------------------------------------------------------------- parse
 
+/** How deep [...] and {...} may nest. */
+const MAX_DEPTH = 256;
+
+/** Set a key of a mapping as its own property: a '__proto__' key must not set the prototype. */
+function setKey(out, key, value) {
+  if (key === '__proto__') Object.defineProperty(out, key, { value, enumerable: true, writable: true, configurable: true });
+  else out[key] = value;
+}
+
 function stripComment(line) {
   let quote = null;
   for (let i = 0; i < line.length; i++) {
@@ -208,7 +217,22 @@ class Flow {
     throw this.fail(`a ${q === '"' ? 'double' : 'single'}-quoted string is not closed`);
   }
 
+  /** Count one more level of [...] or {...}: deeper than MAX_DEPTH is an error, not a stack overflow. */
+  nest() {
+    this.depth = (this.depth || 0) + 1;
+    if (this.depth > MAX_DEPTH) throw this.fail(`flow collections nested deeper than ${MAX_DEPTH} levels`);
+  }
+
   seq() {
+    this.nest();
+    try {
+      return this.seqItems();
+    } finally {
+      this.depth--;
+    }
+  }
+
+  seqItems() {
     this.i++;
     const out = [];
     this.ws();
@@ -225,6 +249,15 @@ class Flow {
   }
 
   map() {
+    this.nest();
+    try {
+      return this.mapItems();
+    } finally {
+      this.depth--;
+    }
+  }
+
+  mapItems() {
     this.i++;
     const out = {};
     this.ws();
@@ -235,7 +268,7 @@ class Flow {
       this.ws();
       if (this.s[this.i] !== ':') throw this.fail(`expected ':' after the key '${key}' in a {...} mapping`);
       this.i++;
-      out[String(key)] = this.value([',', '}']);
+      setKey(out, String(key), this.value([',', '}']));
       this.ws();
       const c = this.s[this.i++];
       if (c === '}') return out;
@@ -343,12 +376,12 @@ export function parseYaml(text) {
       if (rest.trim() === '') {
         if (pos < lines.length && (lines[pos].indent > indent ||
             (lines[pos].indent === indent && lines[pos].text.startsWith('-')))) {
-          out[key] = block(lines[pos].indent);
+          setKey(out, key, block(lines[pos].indent));
         } else {
-          out[key] = null;
+          setKey(out, key, null);
         }
       } else {
-        out[key] = scalarOrFlow(rest, line);
+        setKey(out, key, scalarOrFlow(rest, line));
       }
     }
     if (pos < lines.length && lines[pos].indent > indent) {
