@@ -107,6 +107,16 @@ def test_bad_input_is_refused_before_anything_is_written(tmp_path):
     assert "there is no executable 'demo_nodes/nope'" in done.stderr, done.stderr
     assert 'demo_nodes/talker' in done.stderr  # the list of what there is
     assert not fresh.exists()
+    done = _colcon_wasm('export', str(fresh), '--install-base', install,
+                        '--packages-up-to', 'demo_nodes', 'nope_pkg')
+    assert done.returncode == 1
+    assert '--packages-up-to nope_pkg: no such package' in done.stderr, done.stderr
+    assert 'demo_nodes' in done.stderr.split('there are:')[1]
+    done = _colcon_wasm('export', str(fresh), '--install-base', install,
+                        '--base-url', 'demo/')
+    assert done.returncode == 1
+    assert '--base-url demo/: give the path the site lives under' in done.stderr, done.stderr
+    assert not fresh.exists()
 
 
 HEARD = ('[...colconWasm.session.processes.values()].some((p) => p.exe === "listener" '
@@ -193,3 +203,59 @@ def test_a_site_under_a_sub_path_downloads_compressed_once(tmp_path):
     assert requests.count('/demo/files.json') >= 2, requests
     assert not [r for r in again if '.wasm' in r or r.endswith('.js')], again
     assert ' 404 ' not in log.read_text(), log.read_text()  # the runtime's manifest too
+
+
+PUBLISHER = 'examples_rclcpp_minimal_publisher/publisher_member_function'
+SUBSCRIBER = 'examples_rclcpp_minimal_subscriber/subscriber_member_function'
+SUBSCRIBER_HEARD = (
+    '[...colconWasm.session.processes.values()].some((p) => p.exe === '
+    '"subscriber_member_function" && p.log.some((e) => e.text.includes("I heard")))')
+
+
+def test_a_humble_rclcpp_export_is_served_whole_by_the_static_folder(tmp_path):
+    """
+    Humble's minimal publisher and subscriber (rclcpp), exported up to them.
+
+    Every file the page asks for is in the folder (no 404), the subscriber
+    hears the publisher, and a second visit fetches no program again. A
+    package the selection leaves out is neither listed nor in the views.
+    """
+    from rclcpp_build import rclcpp_build
+    reason = browser_skip_reason()
+    if reason:
+        pytest.skip(reason)
+    build = rclcpp_build()
+    target = tmp_path / 'site'
+    done = _colcon_wasm(
+        'export', str(target), '--install-base', str(build.install),
+        '--packages-up-to', PUBLISHER.split('/')[0], SUBSCRIBER.split('/')[0],
+        '--run', PUBLISHER, '--run', SUBSCRIBER)
+    assert done.returncode == 0, done.stderr
+    workspace = json.loads((target / 'workspace.json').read_text())
+    listed = {p['name'] for p in workspace['packages']}
+    assert {'examples_rclcpp_minimal_publisher', 'examples_rclcpp_minimal_subscriber',
+            'rclcpp_components'} <= listed, listed
+    assert 'examples_rclcpp_minimal_timer' not in listed
+    assert not (target / 'fs' / '0' / 'examples_rclcpp_minimal_timer').exists()
+    root = json.loads((target / 'fs' / '0' / 'index.html').read_text())
+    assert 'examples_rclcpp_minimal_timer' not in {e['name'] for e in root['entries']}
+    assert not list((target / 'fs').rglob('*.a')), 'static libraries in the views'
+    left_out_file = (build.install / 'examples_rclcpp_minimal_timer' / 'share'
+                     / 'examples_rclcpp_minimal_timer' / 'package.xml')
+    assert left_out_file.is_file()
+    log = tmp_path / 'requests.log'
+    with static_server(target, log) as url:
+        _page(url, [
+            {'until': ISOLATED}, {'until': SUBSCRIBER_HEARD},
+            {'goto': url + '?second-visit'}, {'until': ISOLATED},
+            {'until': SUBSCRIBER_HEARD},
+            # a file of a package left out: ENOENT, and the log says which option includes it
+            {'start': 'reader', 'pkg': PUBLISHER.split('/')[0], 'exe': PUBLISHER.split('/')[1],
+             'args': ['--ros-args', '--params-file', str(left_out_file)]},
+            {'wait': 'reader', 'text': '--packages-select examples_rclcpp_minimal_timer'}])
+    missing = [line for line in log.read_text().splitlines()
+               if ' 404 ' in line and 'examples_rclcpp_minimal_timer' not in line]
+    assert not missing, missing
+    requests = _requests(log)
+    again = requests[requests.index('/?second-visit'):]
+    assert not [r for r in again if '.wasm' in r or r.endswith('.js')], again

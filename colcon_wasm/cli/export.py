@@ -26,6 +26,12 @@ class ExportCommand(CliExtensionPoint):
             help='An executable the page starts when it opens, as ?run= does (repeatable)')
         parser.add_argument('--title', help='The page title (default: the workspace name)')
         parser.add_argument(
+            '--packages-select', nargs='+', default=[], metavar='PKG',
+            help='Export only these packages (type descriptions of all stay, for the page)')
+        parser.add_argument(
+            '--packages-up-to', nargs='+', default=[], metavar='PKG',
+            help='Export these packages and what they depend on (as they were built)')
+        parser.add_argument(
             '--base-url', metavar='/PATH/',
             help='Where the site will live, for a host that serves it under a sub-path '
                  '(GitHub Pages: /REPOSITORY/); the page then also works opened without '
@@ -46,12 +52,13 @@ class ExportCommand(CliExtensionPoint):
                         runtime_dir=runtime_dir, runtime_origin=origin,
                         runtime_entry=runtime_entry(runtime_dir), page_modules_dir=bundled,
                         title=args.title)
-            done = export_site(site, args.target, runs=args.run, base_url=args.base_url)
+            done = export_site(site, args.target, runs=args.run, base_url=args.base_url,
+                               select=args.packages_select, up_to=args.packages_up_to)
         except (ExportError, InstallSpaceError, ServeError) as e:
             print(f'colcon-wasm export: {e}', file=sys.stderr)
             return 1
         plain, gz, br = done.first_visit
-        print(f'Exported {len(install_space.executables())} executable(s) of '
+        print(f'Exported {done.executables} executable(s) of '
               f'{install_space.base} into {args.target}: {done.files} files, '
               f'{done.bytes / 1e6:.1f} MB ({done.plain_bytes / 1e6:.1f} MB without the '
               '.gz and .br forms)')

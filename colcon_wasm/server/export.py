@@ -28,10 +28,14 @@ from typing import NamedTuple
 import urllib.parse
 
 from colcon_wasm.error import ColconWasmError
+from colcon_wasm.launch.install_view import AMENT_PREFIX_PATH
 from colcon_wasm.server.export_files import compress_site
 from colcon_wasm.server.export_files import download_sizes
 from colcon_wasm.server.export_files import MANIFEST
 from colcon_wasm.server.export_files import site_size
+from colcon_wasm.server.export_select import left_out_prefixes
+from colcon_wasm.server.export_select import select_packages
+from colcon_wasm.server.export_select import SelectionError
 from colcon_wasm.server.site import GATEWAY_FILES
 from colcon_wasm.server.site import PAGE_MODULE
 
@@ -60,21 +64,43 @@ def check_target(target):
             'empty or new folder, or remove it first; nothing was written')
 
 
-def check_runs(site, runs):
+def check_runs(site, runs, selection=None):
     """
-    Refuse ``--run`` items that name no executable of the install space.
+    Refuse ``--run`` items that name no executable of the install space (or the selection).
 
+    :param selection: the package options, for the message, or None
     :raises ExportError: with the executables there are
     """
     known = {f"{p['name']}/{e['name']}" for p in site.workspace()['packages']
              for e in p['executables']}
+    where = f'the install space {site.install_space.base}'
+    if selection:
+        where = f'the packages of {selection} in {where}'
     for spec in runs:
         item = spec.split(' ')[0]
         if item not in known:
             raise ExportError(
-                f"--run {spec}: there is no executable '{item}' in the install space "
-                f"{site.install_space.base}; there are: {', '.join(sorted(known)) or 'none'}; "
-                'nothing was written')
+                f"--run {spec}: there is no executable '{item}' in {where}; there are: "
+                f"{', '.join(sorted(known)) or 'none'}; nothing was written")
+
+
+def _selection_text(select, up_to):
+    """Return the package options as given (``--packages-up-to A B``), or None."""
+    parts = []
+    if select:
+        parts.append('--packages-select ' + ' '.join(select))
+    if up_to:
+        parts.append('--packages-up-to ' + ' '.join(up_to))
+    return ' '.join(parts) or None
+
+
+def _narrow(site, chosen):
+    """List only the chosen packages' executables in the page (every type description stays)."""
+    if chosen is None:
+        return
+    listed = site.workspace()
+    listed['packages'] = [p for p in listed['packages'] if p['name'] in chosen]
+    site.workspace = lambda: listed
 
 
 def check_base_url(base_url):
@@ -98,25 +124,34 @@ def check_base_url(base_url):
     return base_url if base_url.endswith('/') else base_url + '/'
 
 
-def export_site(site, target, *, runs=(), base_url=None):
+def export_site(site, target, *, runs=(), base_url=None, select=(), up_to=()):
     """
     Write the static site of ``site`` into ``target``.
 
     :param runs: ``PKG/EXE [ARGS]`` the page starts on load, as ``?run=`` does
     :param base_url: where the site lives (``/PATH/``), for the page's ``<base href>``;
       without it the site works under any path its page is opened at with a ``/`` at its end
-    :returns: ``(number of files, bytes)`` written
+    :param select: ``--packages-select``: only these packages (export_select.py)
+    :param up_to: ``--packages-up-to``: these packages and their dependencies
+    :returns: :class:`Exported`
     """
     target = Path(target)
     base_url = check_base_url(base_url)
     check_target(target)
-    check_runs(site, runs)
+    try:
+        chosen = select_packages(site.install_space, select, up_to)
+    except SelectionError as e:
+        raise ExportError(str(e)) from None
+    left_out = left_out_prefixes(site.install_space, chosen)
+    selection = _selection_text(select, up_to)
+    _narrow(site, chosen)
+    check_runs(site, runs, selection)
     if target.is_dir():
         for child in target.iterdir():  # an earlier export: replaced as a whole
             shutil.rmtree(child) if child.is_dir() and not child.is_symlink() else child.unlink()
     target.mkdir(parents=True, exist_ok=True)
     writer = _Writer(target)
-    workspace = static_workspace(site, runs)
+    workspace = static_workspace(site, runs, left_out, selection)
     site.workspace = lambda: workspace  # what the page embeds
     boot = (site.launcher_dir / BOOT_SCRIPT).read_text(encoding='utf-8')
     writer.body('index.html', site.page({'run': list(runs)}, root='./', base=base_url,
@@ -125,23 +160,29 @@ def export_site(site, target, *, runs=(), base_url=None):
     writer.tree('launcher', site.launcher_dir, skip=('.jinja', '.html'))
     _write_runtime(writer, site)
     for (package_name, relative), package in sorted(site._allowed_files().items()):
-        writer.file(f'ws/{package_name}/{relative}', Path(package.prefix) / relative)
+        if chosen is None or package_name in chosen or \
+                Path(package.prefix, relative) == Path(package.types_path):
+            writer.file(f'ws/{package_name}/{relative}', Path(package.prefix) / relative)
     for name, share in sorted(site.install_space.share_folders().items()):
-        writer.tree(f'package/{name}', share)
+        if chosen is None or name in chosen:
+            writer.tree(f'package/{name}', share)
     _write_vendor(writer)
     gateway = site._gateway_dir()
     if gateway is not None:  # ?zenoh=: the page's Zenoh gateway (zenoh-pico)
         for name in GATEWAY_FILES:
             if (Path(gateway) / name).is_file():
                 writer.file(f'zenoh/{name}', Path(gateway) / name)
-    _write_views(writer, site)
+    _write_views(writer, site, left_out)
     writer.file(SERVICE_WORKER, site.launcher_dir / SERVICE_WORKER)
-    writer.body(MARKER, json.dumps({'install_base': str(site.install_space.base),
-                                    'runs': list(runs), 'base_url': base_url}).encode())
-    files = compress_site(target)
+    writer.body(MARKER, json.dumps({
+        'install_base': str(site.install_space.base), 'runs': list(runs), 'base_url': base_url,
+        'packages': None if chosen is None else sorted(chosen)}).encode())
+    first = first_visit_paths(site, workspace, runs)
+    files = compress_site(target, set(first))
     count, size = site_size(target)
-    return Exported(files=count, bytes=size, plain_bytes=writer.bytes,
-                    first_visit=download_sizes(files, first_visit_paths(site, workspace, runs)))
+    executables = sum(len(p['executables']) for p in workspace['packages'])
+    return Exported(files=count, bytes=size, plain_bytes=writer.bytes, executables=executables,
+                    first_visit=download_sizes(files, first))
 
 
 class Exported(NamedTuple):
@@ -151,6 +192,8 @@ class Exported(NamedTuple):
     bytes: int
     plain_bytes: int
     """The site without its compressed forms."""
+    executables: int
+    """The executables the page lists."""
     first_visit: tuple
     """``(plain, gzip, brotli)`` bytes of the page, its modules, types and ``--run`` programs."""
 
@@ -177,9 +220,26 @@ def first_visit_paths(site, workspace, runs):
     return paths
 
 
-def static_workspace(site, runs):
-    """Return the workspace the exported page embeds: what needs serve is off, and says why."""
+def static_workspace(site, runs, left_out=None, selection=None):
+    """
+    Return the workspace the exported page embeds: what needs serve is off, and says why.
+
+    :param left_out: ``{prefix: package}`` the export leaves out: a node that opens a file
+      there is told (``left_out`` of the page's views) which option includes it
+    :param selection: the package options the export was given, for that message
+    """
     workspace = relative_urls(site.workspace())
+    if left_out:
+        # the ament index of the page's programs lists the exported packages only
+        environment = workspace.get('environment') or {}
+        if environment.get(AMENT_PREFIX_PATH):
+            environment[AMENT_PREFIX_PATH] = ':'.join(
+                p for p in environment[AMENT_PREFIX_PATH].split(':') if p not in left_out)
+        workspace['left_out'] = {
+            'prefixes': left_out,
+            'hint': f'the export ({selection}) left out package {{package}}: export with '
+                    f'--packages-select {{package}} too, or with --packages-up-to of the '
+                    'package that runs this node'}
     workspace['static'] = True
     workspace['autorun'] = list(runs)
     workspace['rosbridge'] = None
@@ -243,25 +303,55 @@ def _write_vendor(writer):
     writer.tree('vendor', folder)
 
 
-def _write_views(writer, site):
-    """Write the read-only views (``/fs/<n>/``): files, each directory's listing as index.html."""
+def _write_views(writer, site, left_out=None):
+    """
+    Write the read-only views (``/fs/<n>/``): files, each directory's listing as index.html.
+
+    What no node reads at run time is left out of the views (and their
+    listings), as it would double the site: headers (``include/``), static
+    libraries, and the executables themselves (the page loads them from
+    ``ws/``). So are the packages the selection leaves out.
+
+    :param left_out: ``{prefix: package}`` of packages not exported
+    """
+    skipped = {Path(prefix).resolve() for prefix in (left_out or {})}
     for number, base in enumerate(site.views.bases):
         base = Path(base)
+        prefixes = {base.resolve(), *(Path(p.prefix).resolve()
+                                      for p in site.install_space.packages().values())}
+        skipped |= {prefix / 'include' for prefix in prefixes}
         for folder in [base, *sorted(p for p in base.rglob('*') if p.is_dir())]:
+            real = folder.resolve()
+            if real in skipped or any(s in real.parents for s in skipped):
+                continue
             parts = list(folder.relative_to(base).parts)
             try:
                 kind, listing = site.views.content(str(number), parts, True)
             except Exception:  # out of bounds (a link leaving the base): not in the view
                 continue
+            document = json.loads(listing)
+            names = {e['name'] for e in document['entries']}
+            document['entries'] = [
+                e for e in document['entries']
+                if (folder / e['name']).resolve() not in skipped
+                and not (e['kind'] == 'file' and _build_only(e['name'], names))]
             relative = '/'.join(['fs', str(number), *parts])
             if (folder / 'index.html').exists():
                 raise ExportError(
                     f"'{folder / 'index.html'}' is in the install space: an exported view "
                     'writes each directory listing there; rename the file')
-            writer.body(f'{relative}/index.html', listing)
-            for entry in json.loads(listing)['entries']:
+            writer.body(f'{relative}/index.html', json.dumps(document).encode())
+            for entry in document['entries']:
                 if entry['kind'] == 'file':
                     writer.file(f'{relative}/{entry["name"]}', folder / entry['name'])
+
+
+def _build_only(name, names):
+    """Tell whether a file of a view is one no node reads: a static library, an executable."""
+    if name.endswith('.a'):
+        return True
+    stem = name[:-len('.worker.js')] if name.endswith('.worker.js') else Path(name).stem
+    return Path(name).suffix in ('.wasm', '.js') and f'{stem}.wasm' in names
 
 
 class _Writer:

@@ -56,11 +56,15 @@ def content_hash(data):
     return hashlib.sha256(data).hexdigest()[:20]
 
 
-def compress_site(root):
+def compress_site(root, first=()):
     """
     Write the compressed forms and the manifest of the site in ``root``.
 
     Run after every other file is written; ``files.json`` lists them all.
+
+    :param first: the paths a first visit loads: their brotli form is the
+      smallest brotli makes (quality 11, seconds per MB); the others' is quick
+      (quality 5), as a large install has many executables a visit may never load
 
     :returns: the manifest (``{path: {size, hash, gz?, br?}}``, sizes in bytes)
     """
@@ -77,9 +81,10 @@ def compress_site(root):
                 packed_path = path.with_name(path.name + suffix)
                 if packed_path in taken:  # a file of the install space has that name
                     continue
-                key = (entry['hash'], suffix)
+                best = path.relative_to(root).as_posix() in first
+                key = (entry['hash'], suffix, best)
                 if key not in packed_by_hash:
-                    packed = compress(data)
+                    packed = compress(data, best)
                     packed_by_hash[key] = packed if len(packed) <= _WORTH * len(data) else None
                 packed = packed_by_hash[key]
                 if packed is not None:
@@ -91,12 +96,12 @@ def compress_site(root):
     return files
 
 
-def _gzip(data):
+def _gzip(data, best):
     return gzip.compress(data, compresslevel=9, mtime=0)
 
 
-def _brotli(data):
-    return brotli.compress(data, quality=11)
+def _brotli(data, best):
+    return brotli.compress(data, quality=11 if best else 5)
 
 
 _COMPRESSORS = [('.gz', _gzip)] + ([('.br', _brotli)] if brotli is not None else [])

@@ -341,7 +341,9 @@ export class Session {
    * @returns {{mounts: Array<{path: string, url: string}>, env: Object<string, string>}}
    */
   installView() {
-    const mounts = (this.workspace.mounts || []).map((m) => ({ path: m.path, url: siteUrl(m.url) }));
+    // an exported site that left packages out: a node looking there is told which option includes them
+    const leftOut = this.workspace.left_out || undefined;
+    const mounts = (this.workspace.mounts || []).map((m) => ({ path: m.path, url: siteUrl(m.url), leftOut }));
     const env = {};
     for (const [name, value] of Object.entries(this.workspace.environment || {})) if (value) env[name] = value;
     return { mounts, env };

@@ -313,7 +313,8 @@ function writeFiles(files, url, optional) {
 /**
  * Mount the START message's read-only views (see view_fs.mjs): served ones
  * over HTTP, others from the host's own files. Mounting reads nothing.
- * @param {Array<{path: string, url?: string}>|undefined} mounts
+ * @param {Array<{path: string, url?: string, leftOut?: object}>|undefined} mounts `leftOut`:
+ *   what a static export left out of a served view (see view_source_http.mjs)
  * @param {WorkerPlatform} platform
  * @param {string} url the executable, for messages
  * @param {function(string): void} warn
@@ -323,8 +324,8 @@ function mountReadOnlyViews(mounts, platform, url, warn) {
   const FS = globalThis.FS;
   // Linked without a file system (-sFILESYSTEM=0, or no file calls at all): it reads no files.
   if (!FS || typeof FS.mount !== 'function' || typeof FS.createNode !== 'function') return;
-  const views = mounts.map(({ path, url: served }) => {
-    if (served) return { path, source: httpViewSource(served, path) };
+  const views = mounts.map(({ path, url: served, leftOut }) => {
+    if (served) return { path, source: httpViewSource(served, path, { leftOut, warn }) };
     if (platform.fileViewSource) return { path, source: platform.fileViewSource() };
     throw new Error(`${url}: the view of '${path}' needs a url here: a browser worker reads views over HTTP `
       + '(colcon-wasm serve serves install spaces under /fs/)');

@@ -300,10 +300,12 @@ export class Runtime {
    * @param {boolean} [spec.filesOptional=false] an executable linked without a file system
    *   (which reads no files) starts without `files` instead of failing (a launch file's
    *   parameters given to a program that is no ROS node)
-   * @param {Array<{path: string, url?: string}>} [spec.mounts] read-only views of host
-   *   directories (install spaces), at the same absolute paths in the executable, mounted
-   *   before main() runs and read lazily: from the host's files under Node.js, from `url`
-   *   (served as view_source_http.mjs describes; needed in browsers) otherwise
+   * @param {Array<{path: string, url?: string, leftOut?: object}>} [spec.mounts] read-only
+   *   views of host directories (install spaces), at the same absolute paths in the
+   *   executable, mounted before main() runs and read lazily: from the host's files under
+   *   Node.js, from `url` (served as view_source_http.mjs describes; needed in browsers)
+   *   otherwise; `leftOut`: `{prefixes: {path: package}, hint}`, what a static export left
+   *   out of the served view (a lookup there writes the hint to the program's stderr once)
    * @returns {Promise<NodeProcess>}
    */
   async spawn(spec) {

@@ -60,6 +60,11 @@ export function checkedMounts(mounts, files, name) {
     }
     if (m.url === undefined || m.url === null) return { path };
     const base = globalThis.location ? globalThis.location.href : undefined;
-    return { path, url: new URL(String(m.url), base).href };
+    const mount = { path, url: new URL(String(m.url), base).href };
+    // what a static export left out ({prefixes: {path: package}, hint}): a lookup there says so
+    if (m.leftOut && typeof m.leftOut === 'object') {
+      mount.leftOut = { prefixes: { ...m.leftOut.prefixes }, hint: String(m.leftOut.hint) };
+    }
+    return mount;
   });
 }

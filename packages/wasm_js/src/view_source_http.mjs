@@ -73,9 +73,20 @@ function listingOf(listing) {
  * @param {string} root the view's absolute path in the program (`url` serves it)
  * @returns {import('./view_fs.mjs').ViewSource}
  */
-export function httpViewSource(url, root) {
+export function httpViewSource(url, root, { leftOut = null, warn = () => {} } = {}) {
   const base = url.replace(/\/+$/, '');
   const cache = new Map();
+  const told = new Set();
+  /** A path inside a package a static export left out: say once which option includes it. */
+  const tellLeftOut = (path) => {
+    if (!leftOut) return;
+    for (const [prefix, name] of Object.entries(leftOut.prefixes || {})) {
+      if ((path === prefix || path.startsWith(`${prefix}/`)) && !told.has(name)) {
+        told.add(name);
+        warn(`${path}: no such file here: ${String(leftOut.hint).replaceAll('{package}', name)}`);
+      }
+    }
+  };
   let cached = 0;
   /** absolute path -> listing; a walk brings several */
   const listings = new Map();
@@ -115,6 +126,7 @@ export function httpViewSource(url, root) {
       return listing;
     },
     prefetch(path) {
+      tellLeftOut(path);
       const parts = partsOf(path);
       // the directories along the path already listed need no request
       let dir = root;
