@@ -188,7 +188,13 @@ def read_yaml(path):
             text = f.read()
     except OSError as e:
         raise LaunchError(f'cannot read the launch file: {e.strerror}', path) from None
-    loader = yaml.SafeLoader(text)
+    except UnicodeDecodeError as e:
+        raise LaunchError(f'not UTF-8 text: {e.reason} at byte {e.start}', path) from None
+    try:
+        loader = yaml.SafeLoader(text)
+    except yaml.YAMLError as e:
+        # a character YAML does not allow (the reader checks them first)
+        raise LaunchError(f'not valid YAML: {e}', path) from None
     try:
         node = loader.get_single_node()
         if not isinstance(node, yaml.MappingNode) or len(node.value) != 1 or \

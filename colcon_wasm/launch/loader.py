@@ -525,6 +525,9 @@ def parameters_from_file(path, node_name, where):
     except OSError as e:
         raise LaunchError(f'cannot read the parameters file {path}: {e.strerror}',
                           *where) from None
+    except UnicodeDecodeError as e:
+        raise LaunchError(f'the parameters file {path} is not UTF-8 text: {e.reason} at byte '
+                          f'{e.start}', *where) from None
     except yaml.YAMLError as e:
         raise LaunchError(f'the parameters file {path} is not valid YAML: {e}',
                           *where) from None

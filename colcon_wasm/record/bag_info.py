@@ -19,8 +19,8 @@ import time
 
 from colcon_wasm.record import BagError
 from colcon_wasm.record.bag_reader import bag_files
+from colcon_wasm.record.bag_reader import BoundedFile
 from colcon_wasm.record.bag_reader import read_messages
-from mcap.exceptions import McapError
 from mcap.reader import make_reader
 
 
@@ -77,8 +77,10 @@ def _from_summary(info, path):
     """Add a file's figures from its summary; False when it has none."""
     try:
         with open(path, 'rb') as f:
-            summary = make_reader(f).get_summary()
-    except (McapError, OSError, ValueError, EOFError):
+            summary = make_reader(BoundedFile(f, os.path.getsize(path))).get_summary()
+    except Exception:  # noqa: B902 (mcap's, struct's and any decompressor's errors)
+        # a damaged summary section: the messages are counted by reading, which names
+        # the record that is broken
         return False
     if summary is None or summary.statistics is None:
         return False

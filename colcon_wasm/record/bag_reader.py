@@ -31,6 +31,39 @@ MAGIC = b'\x89MCAP0\r\n'
 _RECORD_NAMES = {op.value: op.name.title().replace('_', '') for op in Opcode}
 
 
+class BoundedFile:
+    """
+    A file whose ``read(n)`` never asks for more than the file still holds.
+
+    The mcap library reads a record's inner lengths (a Chunk's records, a
+    Schema's data) with ``read(length)``: a corrupt length of 2^63 would be
+    an allocation of that size (MemoryError) before it finds the file too
+    short. Bounded, it gets the bytes there are and says the record ends
+    early (EndOfFile), which reads as a broken record.
+    """
+
+    def __init__(self, f, size):  # noqa: D107
+        self._f = f
+        self._size = size
+
+    def read(self, n=-1):
+        """Read at most ``n`` bytes, never past the end of the file."""
+        left = max(0, self._size - self._f.tell())
+        return self._f.read(left if n is None or n < 0 else min(n, left))
+
+    def tell(self):
+        """Return the position in the file."""
+        return self._f.tell()
+
+    def seek(self, offset, whence=0):
+        """Move in the file."""
+        return self._f.seek(offset, whence)
+
+    def seekable(self):
+        """Whether the file can seek."""
+        return self._f.seekable()
+
+
 class Topic:
     """A channel of the bag: its topic, type, schema and recorded QoS."""
 
@@ -109,8 +142,8 @@ def read_messages(path, on_topic):
         if magic != MAGIC:
             raise BagError(f"'{path}' is not an MCAP file: it does not start with the MCAP "
                            f'magic (found {magic!r})')
-        reader = StreamReader(f, skip_magic=True, emit_chunks=True, validate_crcs=True,
-                              record_size_limit=max(size, 1))
+        reader = StreamReader(BoundedFile(f, size), skip_magic=True, emit_chunks=True,
+                              validate_crcs=True, record_size_limit=max(size, 1))
         records = iter(reader.records)
         schemas = {}
         topics = {}

@@ -40,11 +40,24 @@ def _duration(ms):
 def _ms(value):
     if not isinstance(value, dict):
         return 0
-    sec, nsec = int(value.get('sec', 0)), int(value.get('nsec', 0))
+    try:
+        sec, nsec = int(value.get('sec', 0)), int(value.get('nsec', 0))
+    except (TypeError, ValueError, OverflowError):
+        # a recorded duration that is not two integers: read as none (a bag's
+        # metadata is the recorder's text, not trusted)
+        return 0
     if (sec, nsec) == (INFINITE['sec'], INFINITE['nsec']) or sec >= 2147483647 or \
             (sec, nsec) == (0, 0):
         return 0
     return (sec * 1000000000 + nsec) / 1e6
+
+
+def _depth(value):
+    try:
+        depth = int(value or 0)
+    except (TypeError, ValueError, OverflowError):
+        return 0
+    return depth if 0 <= depth < 2 ** 31 else 0
 
 
 def to_rosbag2(profiles):
@@ -102,7 +115,7 @@ def from_rosbag2(text):
             continue
         profiles.append({
             'history': _policy(item.get('history'), HISTORY),
-            'depth': int(item.get('depth') or 0),
+            'depth': _depth(item.get('depth')),
             'reliability': _policy(item.get('reliability'), RELIABILITY),
             'durability': _policy(item.get('durability'), DURABILITY),
             'deadlineMs': _ms(item.get('deadline')),
@@ -182,6 +195,9 @@ def read_overrides(path):
     except OSError as e:
         raise QosOverrideError(f"cannot read the QoS override file '{path}': "
                                f'{e.strerror or e}') from None
+    except UnicodeDecodeError as e:
+        raise QosOverrideError(f"the QoS override file '{path}' is not UTF-8 text: "
+                               f'{e.reason} at byte {e.start}') from None
     except yaml.YAMLError as e:
         raise QosOverrideError(f"the QoS override file '{path}' is not YAML: {e}") from None
     if not isinstance(data, dict):

@@ -64,6 +64,8 @@ logger = colcon_logger.getChild(__name__)
 
 LEVELS = ('none', 'error', 'warning', 'info')
 NAME = re.compile(r'^(/[A-Za-z_~][A-Za-z0-9_]*)+$')
+# as the Node.js server (session.mjs): incomplete fragmented messages one client may leave
+MAX_FRAGMENT_GROUPS = 16
 ID_IN_TEXT = re.compile(r'"id"\s*:\s*("(?:[^"\\]|\\.)*"|-?\d+)')
 
 
@@ -94,6 +96,17 @@ def _name(msg, field):
     if not NAME.match(full):
         raise RequestError(f"{msg.get('op')}: field '{field}' is not a valid ROS name: '{value}'")
     return full
+
+
+def _id_of_text(text):
+    """Return the id of a request whose JSON could not be parsed, when it can be read anyway."""
+    match = ID_IN_TEXT.search(text[:4096])
+    if not match:
+        return None
+    try:
+        return json.loads(match.group(1))
+    except ValueError:
+        return None
 
 
 def _raw_publish(msg):
@@ -274,9 +287,8 @@ class Relay:
             try:
                 msg = json.loads(data)
             except ValueError as e:
-                match = ID_IN_TEXT.search(data[:4096])
                 peer.status('error', f'malformed JSON: {e}; the request was dropped',
-                            json.loads(match.group(1)) if match else None)
+                            _id_of_text(data))
                 return
         if not isinstance(msg, dict) or not isinstance(msg.get('op'), str):
             peer.status('error', "a rosbridge request must be a JSON object with an 'op' field",
@@ -298,11 +310,27 @@ class Relay:
         data = _field(msg, 'data', 'str', True)
         if not 0 <= num < total:
             raise RequestError("fragment: field 'num' must be from 0 to total - 1")
-        parts = peer.fragments.setdefault(fid, {})
-        parts[num] = data
-        if len(parts) == total:
+        group = peer.fragments.get(fid)
+        if group is None:
+            if len(peer.fragments) >= MAX_FRAGMENT_GROUPS:
+                raise RequestError(f'fragment: more than {MAX_FRAGMENT_GROUPS} fragmented '
+                                   f'messages are incomplete; fragment {num} of {fid!r} was '
+                                   'dropped')
+            group = peer.fragments[fid] = {'total': total, 'parts': {}, 'bytes': 0}
+        if total != group['total']:
+            raise RequestError(f"fragment: field 'total' is {total}, but earlier fragments of "
+                               f"{fid!r} said {group['total']}")
+        if num in group['parts']:
+            return
+        group['parts'][num] = data
+        group['bytes'] += len(data)
+        if group['bytes'] > self.max_message_bytes:
             del peer.fragments[fid]
-            self.receive(peer, ''.join(parts[i] for i in range(total)), False)
+            raise RequestError(f'fragment: the fragmented message {fid!r} is larger than the '
+                               f'limit of {self.max_message_bytes} bytes')
+        if len(group['parts']) == total:
+            del peer.fragments[fid]
+            self.receive(peer, ''.join(group['parts'][i] for i in range(total)), False)
 
     def _op_set_level(self, peer, msg):
         level = _field(msg, 'level', 'str', True)
