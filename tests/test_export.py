@@ -112,6 +112,16 @@ def test_bad_input_is_refused_before_anything_is_written(tmp_path):
     assert done.returncode == 1
     assert '--packages-up-to nope_pkg: no such package' in done.stderr, done.stderr
     assert 'demo_nodes' in done.stderr.split('there are:')[1]
+    python_launch = tmp_path / 'talker.launch.py'
+    python_launch.write_text('from launch import LaunchDescription\n')
+    done = _colcon_wasm('export', str(fresh), '--install-base', install,
+                        '--launch', str(python_launch))
+    assert done.returncode == 1
+    assert "a Python launch file runs Humble's launch on a host" in done.stderr, done.stderr
+    done = _colcon_wasm('export', str(fresh), '--install-base', install,
+                        '--launch', 'demo_nodes nope.launch.xml')
+    assert done.returncode == 1
+    assert "package 'demo_nodes' has no launch file 'nope.launch.xml'" in done.stderr
     done = _colcon_wasm('export', str(fresh), '--install-base', install,
                         '--base-url', 'demo/')
     assert done.returncode == 1
@@ -150,6 +160,54 @@ def test_the_exported_demo_runs_from_a_static_host(exported):
                              {'until': RUNNING, 'save': 'running'}])
     assert result['saved']['isolated'] is True
     assert result['saved']['running'] == 'listener,talker', result['saved']
+
+
+def test_an_exported_launch_file_starts_with_the_page(tmp_path):
+    """``--launch``: the demo's XML launch file, planned by the export with its argument."""
+    reason = browser_skip_reason()
+    if reason:
+        pytest.skip(reason)
+    import demo_build
+    target = tmp_path / 'site'
+    done = _colcon_wasm('export', str(target), '--install-base', str(demo_build.demo_install()),
+                        '--launch', 'demo_nodes talker_listener.launch.xml topic:=news')
+    assert done.returncode == 0, done.stderr
+    planned = json.loads((target / 'workspace.json').read_text())['launch']['planned']
+    assert [p['label'] for p in planned[0]['processes']] == ['talker-1', 'listener-2']
+    launch = ('[...colconWasm.session.processes.values()].filter((p) => p.kind === "launch")'
+              '.map((p) => `${p.label} ${p.state}`).join(",")')
+    topics = ('colconWasm.session.graph.topics.filter((t) => t.name === "/news" '
+              '&& t.publishers && t.subscribers).length')
+    with static_server(target) as url:
+        result = _page(url, [{'until': ISOLATED}, {'until': HEARD},
+                             {'until': launch, 'save': 'launch'},
+                             {'until': topics, 'save': 'news'}])
+    assert result['saved']['launch'] == 'launch talker_listener.launch.xml running'
+    assert result['saved']['news'] == 1  # the argument remapped chatter to /news
+
+
+def test_python_nodes_run_in_an_export_with_pyodide(tmp_path):
+    """``--python``: Pyodide is copied in; a Python talker talks to the exported listener."""
+    reason = browser_skip_reason()
+    if reason:
+        pytest.skip(reason)
+    import demo_build
+    from humble_build import REPO
+    pyodide = REPO / 'tests' / 'js' / 'node_modules' / 'pyodide'
+    assert (pyodide / 'pyodide.asm.wasm').is_file(), f'run npm ci in {pyodide.parent.parent}'
+    target = tmp_path / 'site'
+    done = _colcon_wasm('export', str(target), '--install-base', str(demo_build.demo_install()),
+                        '--run', 'demo_nodes/listener', '--python', str(pyodide))
+    assert done.returncode == 0, done.stderr
+    assert (target / 'pyodide' / 'pyodide.asm.wasm.gz').is_file()
+    with static_server(target) as url:
+        result = _page(url, [
+            {'until': ISOLATED},
+            {'python': 'py_talker', 'file': str(REPO / 'tests/data/pyodide/talker.py')},
+            {'until': HEARD.replace('I heard', 'I heard: [Hello from Python: 3]'),
+             'timeoutMs': 120000}])
+    assert any('Publishing: "Hello from Python' in line
+               for line in result['logs']['py_talker']), result['logs']['py_talker'][-5:]
 
 
 def _requests(log):

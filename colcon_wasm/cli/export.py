@@ -24,6 +24,10 @@ class ExportCommand(CliExtensionPoint):
         parser.add_argument(
             '--run', action='append', default=[], metavar='"PKG/EXE [ARGS]"',
             help='An executable the page starts when it opens, as ?run= does (repeatable)')
+        parser.add_argument(
+            '--launch', action='append', default=[], metavar='"PKG FILE [NAME:=VALUE ...]"',
+            help='An XML or YAML launch file the page starts when it opens, planned now '
+                 '(repeatable; a path works too, as for ros2 launch)')
         parser.add_argument('--title', help='The page title (default: the workspace name)')
         parser.add_argument(
             '--packages-select', nargs='+', default=[], metavar='PKG',
@@ -31,6 +35,10 @@ class ExportCommand(CliExtensionPoint):
         parser.add_argument(
             '--packages-up-to', nargs='+', default=[], metavar='PKG',
             help='Export these packages and what they depend on (as they were built)')
+        parser.add_argument(
+            '--python', nargs='?', const='', default=None, metavar='PYODIDE_DIR',
+            help='Copy Pyodide into the site, so that Python nodes and the console run '
+                 '(the folder as serve --pyodide takes it; default: as serve finds it)')
         parser.add_argument(
             '--base-url', metavar='/PATH/',
             help='Where the site will live, for a host that serves it under a sub-path '
@@ -43,6 +51,8 @@ class ExportCommand(CliExtensionPoint):
         from colcon_wasm.server import Site
         from colcon_wasm.server import runtime_entry
         from colcon_wasm.server.export import export_site
+        from colcon_wasm.launch import LaunchError
+        from colcon_wasm.launch.python_nodes import find_pyodide
         from colcon_wasm.server.export import ExportError
         try:
             install_space = InstallSpace(args.install_base)
@@ -52,9 +62,13 @@ class ExportCommand(CliExtensionPoint):
                         runtime_dir=runtime_dir, runtime_origin=origin,
                         runtime_entry=runtime_entry(runtime_dir), page_modules_dir=bundled,
                         title=args.title)
+            pyodide = None
+            if args.python is not None:
+                pyodide = find_pyodide(args.python or None)
             done = export_site(site, args.target, runs=args.run, base_url=args.base_url,
-                               select=args.packages_select, up_to=args.packages_up_to)
-        except (ExportError, InstallSpaceError, ServeError) as e:
+                               select=args.packages_select, up_to=args.packages_up_to,
+                               pyodide=pyodide, launches=args.launch)
+        except (ExportError, InstallSpaceError, ServeError, LaunchError) as e:
             print(f'colcon-wasm export: {e}', file=sys.stderr)
             return 1
         plain, gz, br = done.first_visit

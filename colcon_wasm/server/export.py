@@ -18,7 +18,8 @@ root) adds them, and the page reloads once under it (``app.mjs``).
 
 What needs the server is off in an exported page, and says so: launch files
 (serve evaluates them), the bag player and recorder (serve reads and writes
-MCAP), the rosbridge relay, and Python nodes (Pyodide is not copied).
+MCAP) and the rosbridge relay. Python nodes run when the export copied
+Pyodide in (``--python``).
 """
 
 import json
@@ -33,6 +34,8 @@ from colcon_wasm.server.export_files import compress_site
 from colcon_wasm.server.export_files import download_sizes
 from colcon_wasm.server.export_files import MANIFEST
 from colcon_wasm.server.export_files import site_size
+from colcon_wasm.server.export_launch import LaunchExportError
+from colcon_wasm.server.export_launch import plan_launch
 from colcon_wasm.server.export_select import left_out_prefixes
 from colcon_wasm.server.export_select import select_packages
 from colcon_wasm.server.export_select import SelectionError
@@ -42,6 +45,7 @@ from colcon_wasm.server.site import PAGE_MODULE
 MARKER = '.colcon-wasm-export.json'
 SERVICE_WORKER = 'coi_sw.js'
 BOOT_SCRIPT = 'static_boot.js'
+PYODIDE_FOLDER = 'pyodide'
 _NO_SERVER = 'an exported page has no colcon-wasm serve behind it'
 
 
@@ -84,6 +88,36 @@ def check_runs(site, runs, selection=None):
                 f"{', '.join(sorted(known)) or 'none'}; nothing was written")
 
 
+def _plan_launches(site, launches, selection, left_out):
+    """
+    Plan each ``--launch`` (export_launch.py), refusing one that runs what the site lacks.
+
+    :raises ExportError: the planner's error, or an executable of the plan not exported
+    """
+    if not launches:
+        return []
+    from colcon_wasm.server.launch_socket import LaunchService
+    service = LaunchService(site.install_space, runtime_python=Path(site.runtime_dir) / 'python')
+    plans = []
+    for spec in launches:
+        try:
+            plan = plan_launch(site.install_space, spec, service.find)
+        except LaunchExportError as e:
+            raise ExportError(str(e)) from None
+        try:
+            check_runs(site, [f"{p['package']}/{p['executable']}" for p in plan['processes']],
+                       selection)
+        except ExportError as e:
+            raise ExportError(f'--launch {spec}: {e}') from None
+        for process in plan['processes']:  # the ament index lists the exported packages only
+            env = process.get('env') or {}
+            if env.get(AMENT_PREFIX_PATH) and left_out:
+                env[AMENT_PREFIX_PATH] = ':'.join(
+                    p for p in env[AMENT_PREFIX_PATH].split(':') if p not in left_out)
+        plans.append(plan)
+    return plans
+
+
 def _selection_text(select, up_to):
     """Return the package options as given (``--packages-up-to A B``), or None."""
     parts = []
@@ -124,7 +158,8 @@ def check_base_url(base_url):
     return base_url if base_url.endswith('/') else base_url + '/'
 
 
-def export_site(site, target, *, runs=(), base_url=None, select=(), up_to=()):
+def export_site(site, target, *, runs=(), base_url=None, select=(), up_to=(), pyodide=None,
+                launches=()):
     """
     Write the static site of ``site`` into ``target``.
 
@@ -133,6 +168,10 @@ def export_site(site, target, *, runs=(), base_url=None, select=(), up_to=()):
       without it the site works under any path its page is opened at with a ``/`` at its end
     :param select: ``--packages-select``: only these packages (export_select.py)
     :param up_to: ``--packages-up-to``: these packages and their dependencies
+    :param pyodide: the Pyodide folder to copy in (``--python``), for Python nodes and
+      the console; None leaves them off, and the page says why
+    :param launches: ``--launch`` values (``PKG FILE [NAME:=VALUE ...]``), planned now and
+      started by the page on load (export_launch.py)
     :returns: :class:`Exported`
     """
     target = Path(target)
@@ -146,12 +185,14 @@ def export_site(site, target, *, runs=(), base_url=None, select=(), up_to=()):
     selection = _selection_text(select, up_to)
     _narrow(site, chosen)
     check_runs(site, runs, selection)
+    plans = _plan_launches(site, launches, selection, left_out)
     if target.is_dir():
         for child in target.iterdir():  # an earlier export: replaced as a whole
             shutil.rmtree(child) if child.is_dir() and not child.is_symlink() else child.unlink()
     target.mkdir(parents=True, exist_ok=True)
     writer = _Writer(target)
-    workspace = static_workspace(site, runs, left_out, selection)
+    workspace = static_workspace(site, runs, left_out, selection, python=pyodide is not None)
+    workspace['launch']['planned'] = plans
     site.workspace = lambda: workspace  # what the page embeds
     boot = (site.launcher_dir / BOOT_SCRIPT).read_text(encoding='utf-8')
     writer.body('index.html', site.page({'run': list(runs)}, root='./', base=base_url,
@@ -167,6 +208,8 @@ def export_site(site, target, *, runs=(), base_url=None, select=(), up_to=()):
         if chosen is None or name in chosen:
             writer.tree(f'package/{name}', share)
     _write_vendor(writer)
+    if pyodide is not None:
+        writer.tree(PYODIDE_FOLDER, pyodide, skip=('.map', '.d.ts', '.html'))
     gateway = site._gateway_dir()
     if gateway is not None:  # ?zenoh=: the page's Zenoh gateway (zenoh-pico)
         for name in GATEWAY_FILES:
@@ -176,6 +219,7 @@ def export_site(site, target, *, runs=(), base_url=None, select=(), up_to=()):
     writer.file(SERVICE_WORKER, site.launcher_dir / SERVICE_WORKER)
     writer.body(MARKER, json.dumps({
         'install_base': str(site.install_space.base), 'runs': list(runs), 'base_url': base_url,
+        'launches': list(launches),
         'packages': None if chosen is None else sorted(chosen)}).encode())
     first = first_visit_paths(site, workspace, runs)
     files = compress_site(target, set(first))
@@ -220,13 +264,14 @@ def first_visit_paths(site, workspace, runs):
     return paths
 
 
-def static_workspace(site, runs, left_out=None, selection=None):
+def static_workspace(site, runs, left_out=None, selection=None, python=False):
     """
     Return the workspace the exported page embeds: what needs serve is off, and says why.
 
     :param left_out: ``{prefix: package}`` the export leaves out: a node that opens a file
       there is told (``left_out`` of the page's views) which option includes it
     :param selection: the package options the export was given, for that message
+    :param python: Pyodide is in the site (``--python``)
     """
     workspace = relative_urls(site.workspace())
     if left_out:
@@ -245,9 +290,14 @@ def static_workspace(site, runs, left_out=None, selection=None):
     workspace['rosbridge'] = None
     workspace['launch'] = {'socket': None, 'files': [], 'problem':
                            f'{_NO_SERVER}: launch files are evaluated by serve'}
-    workspace['python'] = dict(workspace.get('python') or {}, pyodide=None,
-                               problem=f'{_NO_SERVER}, and Pyodide is not in the export: '
-                                       'Python nodes need colcon-wasm serve --pyodide')
+    if python:
+        workspace['python'] = dict(workspace.get('python') or {},
+                                   pyodide=f'./{PYODIDE_FOLDER}/', problem=None)
+    else:
+        workspace['python'] = dict(
+            workspace.get('python') or {}, pyodide=None,
+            problem='Pyodide is not in this export: export with --python for Python nodes '
+                    'and the console')
     workspace['bag'] = {'problem': f'{_NO_SERVER}: recording and playing bags need serve'}
     return workspace
 

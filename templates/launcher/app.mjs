@@ -24,6 +24,7 @@ import { dockSplitter } from './views/splitter.mjs';
 import { ConnectionsPanel } from './views/connections.mjs';
 import { PlaybackBar } from './views/playback_bar.mjs';
 import { siteUrl } from './site_url.mjs';
+import { LaunchRun } from './launch_run.mjs';
 
 const workspace = JSON.parse(document.getElementById('workspace').textContent);
 const app = document.getElementById('app');
@@ -209,6 +210,13 @@ async function main() {
     }
     const proc = session.startProcess(request.pkg, request.exe, request.args);
     if (requests.length === 1) logs.select(proc.id);
+  }
+  // an exported site's launch files (export --launch), planned when it was written
+  if (!new URLSearchParams(location.search).getAll('run').length) {
+    for (const plan of (workspace.launch && workspace.launch.planned) || []) {
+      new LaunchRun(session, plan.package, plan.file, plan.arguments || {}).startPlanned(plan)
+        .catch((e) => banners.append(h('div.banner.warn', {}, `launch ${plan.file}: ${e.message}`)));
+    }
   }
   try {
     await session.ready;

@@ -97,6 +97,22 @@ export class LaunchRun {
     });
   }
 
+  /**
+   * Start a launch an exported site planned (colcon-wasm export --launch):
+   * the reader's plan, made when the site was written, started here with no
+   * server, as a reader's plan from serve is. Resolves with its entry.
+   */
+  async startPlanned(plan) {
+    const words = Object.entries(this.args).map(([k, v]) => `${k}:=${v}`);
+    this.runner = 'reader';
+    this.entry = this.session.addLaunch(this.pkg, this.file, words, { stop: () => this.stop() });
+    this.session.addLog(this.entry, {
+      severity: 'SYSTEM', text: `launching ${this.pkg} ${this.file} ${words.join(' ')} (planned by the export)`.trim(),
+    });
+    await this.startPlan(plan);
+    return this.entry;
+  }
+
   send(message) {
     if (this.ws && this.ws.readyState === WebSocket.OPEN) this.ws.send(JSON.stringify(message));
   }
