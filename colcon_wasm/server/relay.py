@@ -116,6 +116,16 @@ def _raw_publish(msg):
         m.get('bytes'), (bytes, bytearray)) and set(m) <= {'bytes', 'secs', 'nsecs'}
 
 
+def _jsonable_request(msg):
+    """Return a CBOR request in JSON's terms; a publish of CDR bytes keeps its bytes."""
+    if not _raw_publish(msg):
+        return jsonable(msg)
+    raw = msg['msg']
+    out = jsonable({k: v for k, v in msg.items() if k != 'msg'})
+    out['msg'] = {k: (bytes(v) if k == 'bytes' else jsonable(v)) for k, v in raw.items()}
+    return out
+
+
 class Peer:
     """One WebSocket client of the relay."""
 
@@ -278,8 +288,8 @@ class Relay:
         if binary:
             try:
                 msg = decode_request(data)
-                if isinstance(msg, dict) and not _raw_publish(msg):
-                    msg = jsonable(msg)
+                if isinstance(msg, dict):
+                    msg = _jsonable_request(msg)
             except ValueError as e:
                 peer.status('error', f'{e}; the request was dropped')
                 return

@@ -404,4 +404,11 @@ def jsonable(value):
         return jsonable(value.value)
     if isinstance(value, float) and not math.isfinite(value):
         return None
-    return value
+    if value is None or isinstance(value, (str, int, float)):
+        return value
+    if isinstance(value, (set, frozenset)):
+        return [jsonable(v) for v in value]
+    if isinstance(value, cbor2.CBORSimpleValue) or value is cbor2.undefined:
+        return None
+    # what else cbor2 decodes (dates, decimals, fractions, UUIDs, ...): its text
+    return str(value)

@@ -71,7 +71,8 @@ def _fuzz(args):
     def record(kind, data):
         # one file per kind of failure (its type and where it was raised), and go on
         error = traceback.format_exc()
-        frames = [f for f in traceback.extract_tb(sys.exc_info()[2]) if 'colcon_wasm' in f.filename]
+        frames = [f for f in traceback.extract_tb(sys.exc_info()[2])
+                  if 'colcon_wasm' in f.filename]
         where = f'{frames[-1].filename}:{frames[-1].lineno}' if frames else ''
         signature = f'{kind} {sys.exc_info()[0].__name__} {where}'
         if signature in seen:

@@ -133,7 +133,7 @@ def outcome_of(sent):
 
 
 def _json(sent):
-    """The JSON objects among sent messages."""
+    """Return the JSON objects among sent messages."""
     out = []
     for m in list(sent):
         try:
@@ -179,7 +179,7 @@ class RelayTarget:
         return outcome_of(self.conn.take())
 
     def check(self):
-        """A rosapi call is answered, a publish reaches the other client."""
+        """Check that a rosapi call is answered and a publish reaches the other client."""
         self.round += 1
         rid = f'check-{self.round}'
         self.conn.take()
@@ -312,7 +312,8 @@ class McapTarget:
             topics.append((topic.name, topic.type, player_qos(topic.qos)))
             return True
         span = BagSpan(self.path, on_topic)
-        outcome = f'{span.count and "messages"} {"error " + _fold(span.error) if span.error else ""}'
+        outcome = f'{span.count and "messages"} '
+        outcome += f'error {_fold(span.error)}' if span.error else ''
         try:
             info = bag_info(self.path)
             format_info(info)
@@ -326,7 +327,7 @@ class McapTarget:
         return self._read(data)[0]
 
     def check(self):
-        """A well-formed bag is read whole."""
+        """Check that a well-formed bag is read whole."""
         if self.good is None:
             return
         _, span, topics = self._read(self.good)
@@ -439,7 +440,7 @@ class LaunchTarget:
         return f'plan of {min(len(plan.processes), 3)} processes'
 
     def check(self):
-        """A well-formed launch file gives its two nodes."""
+        """Check that a well-formed launch file gives its two nodes."""
         plan = self._load(self.good.encode('utf-8'))
         if len(plan.processes) != 2 or plan.processes[0].name != 'talker':
             raise Finding(f'a well-formed launch file gave {plan.processes}')
@@ -505,7 +506,7 @@ class ParamsTarget:
         return outcome
 
     def check(self):
-        """Well-formed files give their parameters and profiles."""
+        """Check that well-formed files give their parameters and profiles."""
         from colcon_wasm.launch.loader import parameters_from_file
         from colcon_wasm.record.qos import read_overrides
         self.path.write_text(GOOD_PARAMS, encoding='utf-8')
