@@ -4,7 +4,7 @@
 """
 An exported site's precompressed files and its manifest of hashes.
 
-Static hosts differ: nginx (``gzip_static``, ``brotli_static``), Netlify or
+Static hosts differ: nginx (``gzip_static``, ``brotli_static``), many
 a CDN send a ``.gz`` or ``.br`` beside a file when the browser accepts it;
 GitHub Pages compresses by itself; ``python3 -m http.server`` and an S3
 bucket send the bytes as they are. So beside every large compressible file
