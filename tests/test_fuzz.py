@@ -150,3 +150,29 @@ def test_seed_corpora_are_small():
         seeds = py_targets.read_corpus(py_targets.corpus_dir(target))
         assert seeds, f'no seed corpus for {target}: capture it (docs/fuzzing.md)'
         assert sum(len(s) for s in seeds) < 12000, target
+
+
+def test_native_cdr_reader(tmp_path):
+    """rmw_wasm_cpp's CDR reader built natively with ASan and UBSan, a seeded count of inputs."""
+    compiler = shutil.which('g++')
+    if compiler is None:
+        import os
+        assert not os.environ.get('CI'), 'g++ is missing: .ci/run installs it'
+        pytest.skip('g++ is needed (apt-get install g++)')
+    driver = tmp_path / 'cdr_reader_driver'
+    built = subprocess.run(
+        [compiler, '-std=c++17', '-O1', '-g', '-fsanitize=address,undefined',
+         '-fno-sanitize-recover=all',
+         f"-I{HERE.parent / 'packages' / 'rmw_wasm_cpp' / 'src' / 'detail'}",
+         str(HERE / 'fuzz' / 'cdr_reader_driver.cpp'), '-o', str(driver)],
+        capture_output=True, text=True, timeout=300)
+    assert built.returncode == 0, built.stderr[-3000:]
+    seeds = []
+    for i, data in enumerate(py_targets.read_corpus(py_targets.corpus_dir('cdr'))):
+        path = tmp_path / f'seed-{i}'
+        path.write_bytes(data[1:])  # the target's first byte names the JS type
+        seeds.append(str(path))
+    completed = subprocess.run([str(driver), str(SEED), '30000', *seeds],
+                               capture_output=True, text=True, timeout=120)
+    assert completed.returncode == 0, completed.stdout[-3000:] + completed.stderr[-3000:]
+    assert completed.stdout.startswith('ok 30000 '), completed.stdout
