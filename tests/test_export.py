@@ -82,6 +82,8 @@ def test_export_writes_the_page_runtime_executables_and_views(exported):
     for name in ('index.html', 'coi_sw.js', 'launcher/app.mjs', 'wasm_js/runtime.mjs',
                  'ws/demo_nodes/lib/demo_nodes/talker.js', 'fs/0/index.html'):
         assert (target / name).is_file(), name
+    runtime = json.loads((target / 'colcon_wasm' / 'manifest.json').read_text())
+    assert runtime == {'flags': {'pthread': True, 'pthread_pool_size': 4}}, runtime  # no paths
     listing = json.loads((target / 'fs' / '0' / 'index.html').read_text())
     assert 'demo_nodes' in {e['name'] for e in listing['entries']}, listing
     workspace = json.loads((target / 'workspace.json').read_text())

@@ -332,8 +332,12 @@ def _write_runtime(writer, site):
     """Write the runtime (``/wasm_js/``): its folder, and the page's own modules over it."""
     from colcon_wasm.server.site import PAGE_MODULES
     writer.tree('wasm_js', site.runtime_dir)
-    if site.runtime_manifest():  # its build flags (runtime.mjs reads the pthread pool size)
-        writer.file('colcon_wasm/manifest.json', site.runtime_manifest())
+    if site.runtime_manifest():
+        # what runtime.mjs reads of its build flags (the pthread pool size); not the rest
+        # (the build's CMake arguments name this machine's paths, for a public site)
+        flags = json.loads(site.runtime_manifest().read_text(encoding='utf-8')).get('flags') or {}
+        writer.body('colcon_wasm/manifest.json', json.dumps({'flags': {
+            k: flags[k] for k in ('pthread', 'pthread_pool_size') if k in flags}}).encode())
     for name in PAGE_MODULES:
         source = site.page_modules_dir / name
         if source.is_dir():
