@@ -31,8 +31,8 @@ sys.path.insert(0, str(HERE / 'fuzz'))
 import fuzz_types  # noqa: E402, I100, I202
 import py_targets  # noqa: E402
 
-JS_TARGETS = {'cdr': 3000, 'rosbridge': 1500, 'foxglove': 1500, 'zenoh': 2000, 'page_yaml': 3000}
-PY_TARGETS = {'relay': 1500, 'mcap': 600, 'launch_xml': 1000, 'launch_yaml': 800, 'params': 1500}
+JS_TARGETS = {'cdr': 20000, 'rosbridge': 4000, 'foxglove': 3000, 'zenoh': 5000, 'page_yaml': 10000}
+PY_TARGETS = {'relay': 4000, 'mcap': 1500, 'launch_xml': 3000, 'launch_yaml': 2000, 'params': 3000}
 SEED = 1
 
 

@@ -38,6 +38,7 @@ function formatScalar(v) {
     if (v === Infinity) return '.inf';
     if (v === -Infinity) return '-.inf';
     if (Number.isInteger(v) && !Object.is(v, -0)) return String(v);
+    if (Object.is(v, -0)) return '-0.0'; // String(-0) is '0': the sign would be lost
     const s = String(v);
     return /[.e]/.test(s) ? s : `${s}.0`;
   }
