@@ -58,7 +58,7 @@ def _schemas(types):
 
 
 def _python_bag(path, types):
-    """An mcap-writer bag: /a and /b in small chunks, log times not in file order; the expectation."""
+    """Write /a and /b with the mcap writer, small chunks, log times not in file order."""
     from mcap.writer import CompressionType, Writer
     schemas = _schemas(types)
     rng = random.Random(41)
@@ -75,7 +75,8 @@ def _python_bag(path, types):
                 topic, 'cdr', schema, {'offered_qos_profiles': ''})
         for i in range(60):
             topic = '/a' if i % 3 else '/b'
-            log_time = 1_700_000_000_000_000_000 + i * 10_000_000 + rng.randrange(-25, 25) * 1_000_000
+            jitter = rng.randrange(-25, 25) * 1_000_000
+            log_time = 1_700_000_000_000_000_000 + i * 10_000_000 + jitter
             data = bytes([0, 1, 0, 0]) + i.to_bytes(4, 'little') + bytes(rng.randrange(0, 40))
             writer.add_message(channels[topic], log_time, data, log_time - 5)
             expected.append({'topic': topic, 'logTime': str(log_time), 'hex': data.hex()})
@@ -97,7 +98,7 @@ def _zstd_bag(path, types):
 
 
 def _serve_recorder_bag(path, types):
-    """A bag as serve's recorder (and colcon-wasm record) write it: BagWriter."""
+    """Write a bag as serve's recorder (and colcon-wasm record) write it: BagWriter."""
     from colcon_wasm.record.bag_writer import BagWriter
     writer = BagWriter(path, _schemas(types), compression='none')
     channel = writer.add_topic('/rec', 'cdr_test_msgs/msg/Inner',

@@ -298,7 +298,7 @@ def static_workspace(site, runs, left_out=None, selection=None, python=False):
             workspace.get('python') or {}, pyodide=None,
             problem='Pyodide is not in this export: export with --python for Python nodes '
                     'and the console')
-    workspace['bag'] = {'problem': f'{_NO_SERVER}: recording and playing bags need serve'}
+    workspace['bag'] = {'local': True, 'problem': None}  # the page reads and writes MCAP
     return workspace
 
 

@@ -6,7 +6,9 @@
 // MCAP library): the recorder streams every topic of this page's bus there
 // as CDR, as it goes, and offers the file for download; the player uploads
 // a bag and publishes what serve sends back in its recorded timing, with
-// pause, step, seek and rate.
+// pause, step, seek and rate. A page with no serve behind it (an export)
+// reads and writes the bag itself (bag_local.mjs): the same player and
+// the same subscriptions, with another source of messages and another sink.
 
 // /clock as the Node.js player publishes it (one definition in the runtime)
 import { CLOCK_QOS, clockMessage } from '../wasm_js/bridges/record/clock.mjs';
@@ -17,7 +19,7 @@ const UPLOAD_SLICE = 1 << 20;
 const MAX_BUFFERED = 256 * 1024 * 1024;
 
 /** A rosbag2 topic QoS for a subscription that matches the offers (ros2 bag record's rule). */
-function recordQos(offers) {
+export function recordQos(offers) {
   const all = (field, value) => offers.length > 0 && offers.every((q) => q[field] === value);
   return {
     history: 'keep_last',
@@ -85,16 +87,59 @@ class BagChannel {
   }
 }
 
-/** Records this page's bus into a bag written by serve. */
-export class PageRecorder {
+/**
+ * What both recorders share: every topic with a publisher is subscribed,
+ * once, with `recordQos`, and each one that appears later; `_channel(t,
+ * type)` (the recorder's) gives the id its messages are written under, or
+ * null for a topic it does not record, and `_write(id, batch)` takes them.
+ */
+export class GraphRecorder {
   constructor(session) {
     this.session = session;
-    this.channel = null;
     this.topics = new Map();
     this.messages = 0;
     this.dropped = 0;
     this.warnings = [];
     this._onGraph = () => this._subscribeNew();
+  }
+
+  /** Follow the graph: subscribe to what has a publisher now and later. */
+  _follow() {
+    this.session.on('graph', this._onGraph);
+    this._subscribeNew();
+  }
+
+  _subscribeNew() {
+    if (!this.recording) return;
+    for (const t of this.session.graph.topics) {
+      if (this.topics.has(t.name) || t.publishers === 0 || !t.types.length) continue;
+      const type = t.types[0];
+      const id = this._channel(t, type);
+      if (id === null) {
+        this.topics.set(t.name, null);
+        continue;
+      }
+      const subscription = this.session.tools.subscribe(
+        { topic: t.name, type, qos: recordQos(t.publisherQos) }, (batch) => this._write(id, batch));
+      this.topics.set(t.name, { id, subscription });
+    }
+  }
+
+  /** Stop following the graph and close the subscriptions (resolves once closed). */
+  async _unfollow() {
+    this.session.off('graph', this._onGraph);
+    const closing = [...this.topics.values()].filter(Boolean)
+      .map((t) => t.subscription.then((s) => s.close()).catch(() => {}));
+    this.topics.clear();
+    await Promise.all(closing);
+  }
+}
+
+/** Records this page's bus into a bag written by serve. */
+export class PageRecorder extends GraphRecorder {
+  constructor(session) {
+    super(session);
+    this.channel = null;
   }
 
   get recording() { return this.channel !== null; }
@@ -114,21 +159,13 @@ export class PageRecorder {
     await started;
     this.messages = 0;
     this.dropped = 0;
-    this.session.on('graph', this._onGraph);
-    this._subscribeNew();
+    this._follow();
   }
 
-  _subscribeNew() {
-    if (!this.channel) return;
-    for (const t of this.session.graph.topics) {
-      if (this.topics.has(t.name) || t.publishers === 0 || !t.types.length) continue;
-      const id = this.topics.size + 1;
-      const type = t.types[0];
-      this.channel.send('topic', { id, topic: t.name, type, qos: t.publisherQos });
-      const subscription = this.session.tools.subscribe(
-        { topic: t.name, type, qos: recordQos(t.publisherQos) }, (batch) => this._write(id, batch));
-      this.topics.set(t.name, { id, subscription });
-    }
+  _channel(t, type) {
+    const id = this.topics.size + 1;
+    this.channel.send('topic', { id, topic: t.name, type, qos: t.publisherQos });
+    return id;
   }
 
   _write(id, batch) {
@@ -150,13 +187,13 @@ export class PageRecorder {
     }
   }
 
-  /** Stop: resolves to {url, name, messages, bytes, skipped, error, dropped} once serve closed the file. */
+  /**
+   * Stop: resolves to {url, name, messages, bytes, skipped, error, dropped,
+   * droppedWhy, warnings} once serve closed the file.
+   */
   async stop() {
     if (!this.channel) throw new Error('not recording');
-    this.session.off('graph', this._onGraph);
-    const closing = [...this.topics.values()].map((t) => t.subscription.then((s) => s.close()).catch(() => {}));
-    this.topics.clear();
-    await Promise.all(closing);
+    await this._unfollow();
     const channel = this.channel;
     await channel.drain(0);
     const done = channel.reply('recorded');
@@ -164,16 +201,80 @@ export class PageRecorder {
     const result = await done;
     this.channel = null;
     channel.ws.close();
-    return { ...result, dropped: this.dropped, warnings: this.warnings.slice() };
+    return { ...result, dropped: this.dropped, droppedWhy: 'serve did not keep up', warnings: this.warnings.slice() };
   }
 }
 
-/** Plays a bag (a File or Blob) into this page's bus, served back by serve in its timing. */
+/**
+ * A bag served back by serve: uploaded over `/bag`, which reads it and sends
+ * its messages in their recorded timing. The source of a `PagePlayer`.
+ */
+export class ServeBagSource {
+  /** @param {object} hooks {onState(state), onError(text), onMessage(id, data), onClock(ns)} */
+  constructor(hooks) {
+    this.hooks = hooks;
+    this.channel = null;
+  }
+
+  /** Upload the bag; resolves to serve's description of it. */
+  async open(file) {
+    const ws = await openBagSocket();
+    this.channel = new BagChannel(ws, {
+      onEvent: (msg) => {
+        if (msg.op === 'state') this.hooks.onState(msg);
+        else if (msg.op === 'error') this.hooks.onError(msg.msg);
+        else this.hooks.onState(null);
+      },
+      onBinary: (buffer) => this._frame(buffer),
+    });
+    const described = this.channel.reply('bag');
+    this.channel.send('upload', { name: file.name || 'bag.mcap', size: file.size });
+    for (let offset = 0; offset < file.size; offset += UPLOAD_SLICE) {
+      await this.channel.drain(4 * UPLOAD_SLICE);
+      ws.send(await file.slice(offset, offset + UPLOAD_SLICE).arrayBuffer());
+    }
+    return described;
+  }
+
+  /** A played message (`<u32 id><f64 position ms>` and the CDR bytes) or the bag time (id 0). */
+  _frame(buffer) {
+    const view = new DataView(buffer);
+    const id = view.getUint32(0, true);
+    if (id === 0) this.hooks.onClock(view.getBigUint64(12, true));
+    else this.hooks.onMessage(id, new Uint8Array(buffer, 12));
+  }
+
+  play() { this.channel?.send('play'); }
+  pause() { this.channel?.send('pause'); }
+  step() { this.channel?.send('step'); }
+  seek(positionMs) { this.channel?.send('seek', { position_ms: positionMs }); }
+  setRate(rate) { this.channel?.send('rate', { rate }); }
+  setClock(hz) { this.channel?.send('clock', { hz }); }
+
+  close() {
+    if (this.channel) this.channel.ws.close();
+    this.channel = null;
+  }
+}
+
+/**
+ * Plays a bag (a File or Blob) into this page's bus: one publisher per
+ * topic with the QoS rosbag2's player would offer, each message published
+ * when its source hands it over, and /clock. The source reads the bag and
+ * keeps the timing: serve's (`ServeBagSource`, the default) or the page's
+ * own (bag_local.mjs, `makeSource`).
+ */
 export class PagePlayer {
-  constructor(session, onChange = () => {}) {
+  /**
+   * @param {function(PagePlayer): void} [onChange] told of every change of state
+   * @param {object} [options]
+   * @param {function(object): object} [options.makeSource] makes a source from its hooks
+   */
+  constructor(session, onChange = () => {}, { makeSource = (hooks) => new ServeBagSource(hooks) } = {}) {
     this.session = session;
     this.onChange = onChange;
-    this.channel = null;
+    this.makeSource = makeSource;
+    this.source = null;
     this.info = null;
     this.state = { state: 'closed', position_ms: 0, sent: 0, rate: 1 };
     this.published = 0;
@@ -184,26 +285,28 @@ export class PagePlayer {
     this.clockTime = null;
   }
 
-  /** Upload the bag and prepare its publishers; resolves to serve's description of it. */
+  /** Open the bag and prepare its publishers; resolves to the source's description of it. */
   async open(file) {
     await this.close();
-    const ws = await openBagSocket();
-    this.channel = new BagChannel(ws, {
-      onEvent: (msg) => {
-        if (msg.op === 'state') this.state = msg;
-        if (msg.op === 'error') this.error = msg.msg;
-        if (msg.op === 'state' && msg.error) this.error = msg.error;
+    this.source = this.makeSource({
+      onState: (state) => {
+        if (state) this.state = state;
+        if (state && state.error) this.error = state.error;
         this.onChange(this);
       },
-      onBinary: (buffer) => this._publish(buffer),
+      onError: (text) => {
+        this.error = text;
+        this.onChange(this);
+      },
+      onMessage: (id, data) => this._publish(id, data),
+      onClock: (ns) => this._clock(ns),
     });
-    const described = this.channel.reply('bag');
-    this.channel.send('upload', { name: file.name || 'bag.mcap', size: file.size });
-    for (let offset = 0; offset < file.size; offset += UPLOAD_SLICE) {
-      await this.channel.drain(4 * UPLOAD_SLICE);
-      ws.send(await file.slice(offset, offset + UPLOAD_SLICE).arrayBuffer());
+    try {
+      this.info = await this.source.open(file);
+    } catch (e) {
+      await this.close();
+      throw e;
     }
-    this.info = await described;
     this.error = this.info.error;
     for (const t of this.info.topics) {
       this.publishers.set(t.id, this.session.tools.advertise({ topic: t.topic, type: t.type, qos: t.qos }));
@@ -215,27 +318,23 @@ export class PagePlayer {
     return this.info;
   }
 
-  _publish(buffer) {
-    const view = new DataView(buffer);
-    const id = view.getUint32(0, true);
-    if (id === 0) {
-      // the bag time, for /clock
-      this.clockTime = view.getBigUint64(12, true);
-      if (this.clock) this.clock.then((p) => p.publish(clockMessage(this.clockTime))).catch(() => {});
-      return;
-    }
+  _clock(ns) {
+    this.clockTime = ns;
+    if (this.clock) this.clock.then((p) => p.publish(clockMessage(ns))).catch(() => {});
+  }
+
+  _publish(id, data) {
     const publisher = this.publishers.get(id);
     if (!publisher) return;
-    const data = new Uint8Array(buffer, 12);
     this.published++;
     publisher.then((p) => p.publish(data)).catch((e) => { this.error = `publishing failed: ${e.message}`; });
   }
 
-  play() { this.channel?.send('play'); }
-  pause() { this.channel?.send('pause'); }
-  step() { this.channel?.send('step'); }
-  seek(positionMs) { this.channel?.send('seek', { position_ms: positionMs }); }
-  setRate(rate) { this.channel?.send('rate', { rate }); }
+  play() { this.source?.play(); }
+  pause() { this.source?.pause(); }
+  step() { this.source?.step(); }
+  seek(positionMs) { this.source?.seek(positionMs); }
+  setRate(rate) { this.source?.setRate(rate); }
 
   /** Publish /clock (rosgraph_msgs/msg/Clock) with the bag time `hz` times a second while playing (0: stop). */
   async setClock(hz) {
@@ -244,13 +343,13 @@ export class PagePlayer {
       this.clock = this.session.tools.advertise({ topic: '/clock', type: 'rosgraph_msgs/msg/Clock', qos: CLOCK_QOS });
       await this.clock;
     }
-    this.channel?.send('clock', { hz });
+    this.source?.setClock(hz);
   }
 
   /** Stop playing and remove the publishers. */
   async close() {
-    if (this.channel) this.channel.ws.close();
-    this.channel = null;
+    if (this.source) this.source.close();
+    this.source = null;
     const closing = [...this.publishers.values()].map((p) => p.then((x) => x.close()).catch(() => {}));
     this.publishers.clear();
     if (this.clock) closing.push(this.clock.then((p) => p.close()).catch(() => {}));

@@ -6,17 +6,21 @@
 //
 //   node page_bag.mjs '<json: {url, chromium, mode, ...}>'
 //
-// mode 'record' {out}: starts the demo talker and camera, clicks Record,
-//   waits 4 s, clicks Stop and saves the download to `out`:
+// mode 'record' {out, recordMs?, blobOut?}: starts the demo talker and camera, clicks
+//   Record, waits `recordMs` (4000), clicks Stop and saves the download to `out`
+//   (with `blobOut`, also the bytes the page's recorder URL gives, fetched in the page):
 //   {ok, error, logs: {talker}, chip, result, rec: {first, last, after}} (rec: the
 //   header's REC chip as it records and after the stop)
-// mode 'play' {bag}: starts the demo listener, drops `bag` on the page, then
+// mode 'play' {bag, listener?}: starts the demo listener (or, with listener 'autorun',
+//   takes the one the page started), drops `bag` on the page, then
 //   Step ×3, seek to `seekMs`, Play, Pause, Play to the end:
 //   {ok, error, logs: {listener}, marks: {afterSteps, afterPause, afterPauseWait, end}, info,
 //    bar: {opened, stepped, playing, paused, ended}} (bar: the playback bar at each of those)
 // With `screenshots` (a folder), a screenshot of the page while it records or plays.
 // mode 'clock' {bag, pkg, exe, args, until}: starts pkg/exe args, drops `bag`, ticks
 //   /clock, plays, and waits for a log line matching `until`: {ok, error, logs: {node}}
+// mode 'refuse' {bags: [path]}: drops each bag, waits for the bar to say it is bad:
+//   {ok, error, refused: [{status, playerHidden, state}]}
 
 import fs from 'node:fs';
 import path from 'node:path';
@@ -35,8 +39,8 @@ const until = async (what, fn, arg, timeoutMs = 30000) => {
     throw new Error(`timed out waiting for ${what}`);
   }
 };
-/** Drop a bag on the page, as a user drags it from the file manager. */
-async function dropBag(file) {
+/** Drop a bag on the page, as a user drags it from the file manager (`opens`: wait until it is open). */
+async function dropBag(file, opens = true) {
   const bytes = fs.readFileSync(file).toString('base64');
   const transfer = await page.evaluateHandle(([b64, name]) => {
     const raw = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
@@ -45,7 +49,7 @@ async function dropBag(file) {
     return dt;
   }, [bytes, path.basename(file)]);
   await page.dispatchEvent('body', 'drop', { dataTransfer: transfer });
-  await until('the bag to open', () => !document.querySelector('#bag-player').hidden);
+  if (opens) await until('the bag to open', () => !document.querySelector('#bag-player').hidden);
 }
 /** The playback bar as the user sees it: the play button's state and the position field. */
 const barLooks = () => page.evaluate(() => {
@@ -97,7 +101,7 @@ try {
     await page.click('#bag-record');
     await until('recording', () => document.querySelector('#bag-state').textContent.includes('recording'));
     out.rec = { first: await recChip() };
-    await page.waitForTimeout(4000);
+    await page.waitForTimeout(options.recordMs || 4000);
     out.rec.last = await recChip();
     await shoot('recording');
     const downloading = page.waitForEvent('download', { timeout: 30000 });
@@ -108,6 +112,29 @@ try {
     out.logs.talker = await logsOf(talker);
     out.chip = await page.textContent('#bag-state');
     out.rec.after = await recChip();
+    if (options.blobOut) {
+      out.blobUrl = await page.evaluate(() => window.colconWasm.bag.recorder.url);
+      const b64 = await page.evaluate(async (url) => {
+        const bytes = new Uint8Array(await (await fetch(url)).arrayBuffer());
+        let text = '';
+        for (let i = 0; i < bytes.length; i += 0x8000) text += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
+        return btoa(text);
+      }, out.blobUrl);
+      fs.writeFileSync(options.blobOut, Buffer.from(b64, 'base64'));
+    }
+  } else if (options.mode === 'refuse') {
+    out.refused = [];
+    for (const bag of options.bags) {
+      await page.evaluate(() => { document.querySelector('#bag-state').textContent = ''; });
+      await dropBag(bag, false);
+      await until(`the refusal of ${bag}`, () => document.querySelector('#bag-state').classList.contains('bad'));
+      out.refused.push(await page.evaluate(() => ({
+        status: document.querySelector('#bag-state').textContent,
+        playerHidden: document.querySelector('#bag-player').hidden,
+        state: window.colconWasm.bag.player.state.state,
+      })));
+      await page.evaluate(() => document.querySelector('#bag-state').classList.remove('bad'));
+    }
   } else if (options.mode === 'clock') {
     const node = await page.evaluate(([p, e, a]) => window.colconWasm.session.startProcess(p, e, a).id,
       [options.pkg, options.exe, options.args]);
@@ -118,7 +145,12 @@ try {
     await until(`a line matching ${options.until}`, ([id, re]) => window.colconWasm.session.processes.get(id).log.some((e) => new RegExp(re).test(e.text)), [node, options.until], 60000);
     out.logs.node = await logsOf(node);
   } else {
-    const listener = await page.evaluate(() => window.colconWasm.session.startProcess('demo_nodes', 'listener', []).id);
+    const listener = options.listener === 'autorun'
+      ? await (async () => {
+        await until('the page to start its listener', () => [...window.colconWasm.session.processes.values()].some((p) => p.exe === 'listener'));
+        return page.evaluate(() => [...window.colconWasm.session.processes.values()].find((p) => p.exe === 'listener').id);
+      })()
+      : await page.evaluate(() => window.colconWasm.session.startProcess('demo_nodes', 'listener', []).id);
     await until('the listener', (id) => window.colconWasm.session.graph.topics.some((x) => x.name === '/chatter' && x.subscribers > 0), listener);
     await dropBag(options.bag);
     out.info = await page.evaluate(() => window.colconWasm.bag.player.info);

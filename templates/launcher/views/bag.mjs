@@ -3,10 +3,12 @@
 
 // Recording a bag: the Record / Stop button of the playback bar (the bag
 // downloads when it stops) and the header's red REC chip, with the elapsed
-// time, while it records (bag.mjs does the work).
+// time, while it records (bag.mjs does the work with serve, bag_local.mjs
+// in a page without serve).
 
 import { h } from '../dom.mjs';
 import { PageRecorder } from '../bag.mjs';
+import { LocalRecorder } from '../bag_local.mjs';
 
 function download(url, name) {
   const a = h('a', { href: url, download: name, hidden: true });
@@ -23,11 +25,15 @@ export function elapsed(startedMs, nowMs = performance.now()) {
 
 /**
  * The recorder's controls: `button` (for the playback bar) and `chip` (for
- * the header); `say(text, state)` reports in the bar's status.
+ * the header); `say(text, state)` reports in the bar's status. With `local`
+ * the page builds the file itself (no serve behind it).
  */
-export function recordControl(session, say) {
-  const recorder = new PageRecorder(session);
-  const button = h('button#bag-record', { title: 'record every topic into a rosbag2 MCAP file' }, '● Record');
+export function recordControl(session, say, { local = false } = {}) {
+  const recorder = local ? new LocalRecorder(session) : new PageRecorder(session);
+  const title = local
+    ? `record every topic into a rosbag2 MCAP file built in this page (uncompressed, up to ${recorder.maxBytes / 2 ** 20} MiB)`
+    : 'record every topic into a rosbag2 MCAP file';
+  const button = h('button#bag-record', { title }, '● Record');
   const time = h('span.rec-time', {}, '0:00');
   const chip = h('span.chip.rec#rec-chip', { hidden: true, title: 'recording every topic' },
     h('span.dot'), 'REC', time);
@@ -55,7 +61,7 @@ export function recordControl(session, say) {
         button.classList.remove('recording');
         const result = await recorder.stop();
         button.textContent = '● Record';
-        const lost = result.dropped ? `, ${result.dropped} dropped (serve did not keep up)` : '';
+        const lost = result.dropped ? `, ${result.dropped} dropped (${result.droppedWhy || 'serve did not keep up'})` : '';
         say(result.error || `${result.name}: ${result.messages} messages${lost}`, result.error || result.dropped ? 'bad' : undefined);
         download(result.url, result.name);
       }

@@ -5,10 +5,13 @@
 // Play bag… (or drop a .mcap anywhere on the page), and once a bag is open
 // play/pause (its state shown: playing, paused, ended), step, the position in
 // a fixed-width field, a seek bar, the rate and a status line. The REC chip
-// and the /clock box go in the header (`headerItems`). bag.mjs does the work.
+// and the /clock box go in the header (`headerItems`). bag.mjs does the work
+// with serve; in a page without serve (`workspace.bag.local`, an export)
+// bag_local.mjs reads, plays and records the bags in the page.
 
 import { h } from '../dom.mjs';
 import { PagePlayer } from '../bag.mjs';
+import { LocalBagSource } from '../bag_local.mjs';
 import { recordControl } from './bag.mjs';
 
 const seconds = (ms) => `${(Math.max(0, ms) / 1000).toFixed(1)} s`;
@@ -42,8 +45,13 @@ const PLAY = {
 
 /** The bar; `window.colconWasm.bag` holds the recorder and the player. */
 export class PlaybackBar {
-  /** @param {string} [problem] why bags cannot be recorded or played here (an exported page) */
+  /**
+   * @param {string} [problem] why bags cannot be recorded or played here
+   * (`session.workspace.bag.local`: the page does both itself, without serve)
+   */
   constructor(session, problem = null) {
+    const local = !problem && !!session.workspace?.bag?.local;
+    this.local = local;
     this.status = h('span.bag-status#bag-state', {}, 'no bag open');
     const say = (text, state, more = '') => {
       this.status.textContent = text;
@@ -51,7 +59,7 @@ export class PlaybackBar {
       for (const s of ['ok', 'warn', 'bad']) this.status.classList.toggle(s, state === s);
     };
     this.say = say;
-    const record = recordControl(session, say);
+    const record = recordControl(session, say, { local });
     const file = h('input#bag-file', { type: 'file', accept: '.mcap', hidden: true });
     const open = h('button#bag-open', { title: 'play a rosbag2 MCAP bag into these nodes (or drop it on the page)' }, 'Play bag…');
     this.play = h('button.play#bag-play', { dataset: { state: 'closed', icon: 'play' } }, icon('play'));
@@ -63,7 +71,9 @@ export class PlaybackBar {
       ...['0.25', '0.5', '1', '2', '4', '10'].map((r) => h('option', { value: r, selected: r === '1' }, `${r}×`)));
     this.controls = h('span.bag-player#bag-player', { hidden: true },
       this.play, this.playState, step, this.position, this.seek, rate);
-    this.hint = h('span.hint', {}, 'drop a .mcap on the page to replay it into these nodes');
+    this.hint = h('span.hint', {}, local
+      ? 'drop a .mcap (uncompressed chunks) on the page to replay it into these nodes'
+      : 'drop a .mcap on the page to replay it into these nodes');
     const clock = h('input#bag-clock', { type: 'checkbox' });
     this.clock = h('label.chip.clock#bag-clock-label', {
       hidden: true, title: 'publish /clock with the bag time (for use_sim_time nodes)',
@@ -79,7 +89,8 @@ export class PlaybackBar {
     /** For the header: the REC chip (while recording) and the /clock box (once a bag is open). */
     this.headerItems = [record.chip, this.clock];
 
-    const player = new PagePlayer(session, (p) => this.render(p));
+    const player = new PagePlayer(session, (p) => this.render(p),
+      local ? { makeSource: (hooks) => new LocalBagSource(session, hooks) } : {});
     this.player = player;
     window.colconWasm = Object.assign(window.colconWasm || {}, { bag: { recorder: record.recorder, player } });
     open.onclick = () => file.click();
@@ -99,7 +110,7 @@ export class PlaybackBar {
   }
 
   async open(f) {
-    this.say(`uploading ${f.name}…`);
+    this.say(`${this.local ? 'reading' : 'uploading'} ${f.name}…`);
     try {
       const info = await this.player.open(f);
       const duration = seconds(info.duration_ms);
@@ -113,6 +124,11 @@ export class PlaybackBar {
       if (info.error) this.say(info.error, 'bad');
       else this.say(this.summary(this.player), info.skipped.length ? 'warn' : undefined, PlaybackBar.skippedText(info));
     } catch (e) {
+      // nothing is open: the bar is as before any bag, with why in its status
+      this.controls.hidden = true;
+      this.clock.hidden = true;
+      this.hint.hidden = false;
+      this.render(this.player);
       this.say(e.message, 'bad');
     }
   }
