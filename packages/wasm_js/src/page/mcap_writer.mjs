@@ -4,10 +4,10 @@
 /**
  * Write an MCAP file in memory (https://mcap.dev/spec), for the page's
  * recorder: the magic, a Header, the Schema and Channel records as topics
- * appear, the messages in uncompressed chunks of 1 MiB with their
- * MessageIndex records, a DataEnd with the data section's CRC, and a
- * summary (the schemas and channels again, Statistics, a ChunkIndex per
- * chunk, SummaryOffset records) before the Footer, so that readers that
+ * appear, the messages in uncompressed chunks of 1 MiB (each with the CRC
+ * of its records) and their MessageIndex records, a DataEnd, and a summary
+ * (the schemas and channels again, Statistics, a ChunkIndex per chunk,
+ * SummaryOffset records, its CRC in the Footer), so that readers that
  * seek (`mcap`'s indexed reader, @mcap/core's McapIndexedReader) and
  * readers that stream both read it.
  *
@@ -81,7 +81,6 @@ export class McapWriter {
     this.maxBytes = maxBytes;
     this.parts = [];
     this.size = 0;
-    this.dataCrc = 0;
     this.schemas = [];
     this.channels = [];
     this.chunkIndexes = [];
@@ -103,7 +102,6 @@ export class McapWriter {
   _append(bytes) {
     this.parts.push(bytes);
     this.size += bytes.length;
-    this.dataCrc = crc32(bytes, this.dataCrc);
   }
 
   /**
@@ -199,7 +197,9 @@ export class McapWriter {
     this._chunks.flush();
     this.finished = true;
     const r = this._records;
-    this._append(r.record(Op.DATA_END).u32(this.dataCrc).end());
+    // no CRC of the whole data section (0: not computed), as the mcap C++ and
+    // Python writers by default: each chunk has its own, one pass over the bytes
+    this._append(r.record(Op.DATA_END).u32(0).end());
     const summaryStart = this.size;
     const summary = [];
     const groups = [];
