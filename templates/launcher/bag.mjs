@@ -244,13 +244,21 @@ export class ServeBagSource {
     else this.hooks.onMessage(id, new Uint8Array(buffer, 12));
   }
 
+  // the controls, carried out by serve's player (colcon_wasm/record/paced_player.py)
+  /** Play from where it stands (from the start once it ended). */
   play() { this.channel?.send('play'); }
+  /** Stop sending; the position stays. */
   pause() { this.channel?.send('pause'); }
+  /** Pause, and send the next message at once. */
   step() { this.channel?.send('step'); }
+  /** Go to `positionMs` from the first message. */
   seek(positionMs) { this.channel?.send('seek', { position_ms: positionMs }); }
+  /** Play `rate` times as fast as recorded. */
   setRate(rate) { this.channel?.send('rate', { rate }); }
+  /** Send the bag time for /clock `hz` times a second while playing (0: none). */
   setClock(hz) { this.channel?.send('clock', { hz }); }
 
+  /** Close the connection (serve stops playing). */
   close() {
     if (this.channel) this.channel.ws.close();
     this.channel = null;
@@ -330,10 +338,15 @@ export class PagePlayer {
     publisher.then((p) => p.publish(data)).catch((e) => { this.error = `publishing failed: ${e.message}`; });
   }
 
+  /** Play from where it stands (from the start once it ended). */
   play() { this.source?.play(); }
+  /** Stop sending; the position stays. */
   pause() { this.source?.pause(); }
+  /** Pause, and send the next message at once. */
   step() { this.source?.step(); }
+  /** Go to `positionMs` from the first message; nothing between is sent. */
   seek(positionMs) { this.source?.seek(positionMs); }
+  /** Play `rate` times as fast as recorded. */
   setRate(rate) { this.source?.setRate(rate); }
 
   /** Publish /clock (rosgraph_msgs/msg/Clock) with the bag time `hz` times a second while playing (0: stop). */

@@ -116,13 +116,21 @@ export class LocalBagSource {
     return info;
   }
 
+  // the controls, carried out by the page's paced player (../wasm_js/page/paced_player.mjs)
+  /** Play from where it stands (from the start once it ended). */
   play() { this.player?.play(); }
+  /** Stop sending; the position stays. */
   pause() { this.player?.pause(); }
+  /** Pause, and send the next message at once. */
   step() { this.player?.step(); }
+  /** Go to `positionMs` from the first message. */
   seek(positionMs) { this.player?.seek(positionMs); }
+  /** Play `rate` times as fast as recorded. */
   setRate(rate) { this.player?.setRate(rate); }
+  /** Tick /clock with the bag time `hz` times a second while playing (0: none). */
   setClock(hz) { this.player?.setClock(hz); }
 
+  /** Stop playing (the bag's bytes are let go). */
   close() {
     this.player?.close();
     this.player = null;
