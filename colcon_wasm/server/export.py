@@ -17,9 +17,10 @@ Static hosts seldom send the cross-origin isolation headers that
 root) adds them, and the page reloads once under it (``app.mjs``).
 
 What needs the server is off in an exported page, and says so: launch files
-(serve evaluates them), the bag player and recorder (serve reads and writes
-MCAP) and the rosbridge relay. Python nodes run when the export copied
-Pyodide in (``--python``).
+(serve evaluates them; ``--launch`` plans XML and YAML ones here) and the
+rosbridge relay. Bags are read and recorded in the page itself
+(``bag_local.mjs``), and Python nodes run when the export copied Pyodide in
+(``--python``).
 """
 
 import json
