@@ -302,3 +302,16 @@ def test_serve(demo, fresh):
 def test_blasm_help(fresh):
     completed = run(fresh, 'blasm', '-h')
     assert '-u' in completed.stdout and '-s' in completed.stdout
+
+
+def test_export_from_the_fresh_venv(demo, fresh, tmp_path):
+    """`colcon-wasm export` of the installed wheel: its brotli dependency writes the .br forms."""
+    site = tmp_path / 'site'
+    completed = run(fresh, 'colcon-wasm', 'export', str(site), '--run', 'demo_nodes/talker',
+                    cwd=demo, timeout=300)
+    assert 'A first visit downloads' in completed.stdout, completed.stdout + completed.stderr
+    manifest = json.loads((site / 'files.json').read_text())
+    assert manifest['brotli'] is True
+    talker = manifest['files']['ws/demo_nodes/lib/demo_nodes/talker.wasm']
+    assert talker['br'] < talker['size'], talker
+    assert (site / 'ws/demo_nodes/lib/demo_nodes/talker.wasm.br').is_file()
