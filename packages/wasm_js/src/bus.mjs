@@ -32,6 +32,7 @@ import { now, waitAsyncAlive } from './bus/clock.mjs';
 import { BusError, Code } from './bus/errors.mjs';
 import { snapshot } from './bus/graph.mjs';
 import { lock, lockOwner, lockStep, tryLock, unlock } from './bus/lock.mjs';
+import { recoverArena } from './bus/recovery.mjs';
 import * as registry from './bus/registry.mjs';
 import { multiMemorySupported } from './copier.mjs';
 
@@ -182,6 +183,19 @@ export class Bus {
     this.maxMessage = h[HEADER.MAX_MESSAGE];
     this.maxBytes = h[HEADER.MAX_BYTES_MB] * 1024 * 1024;
     this.growable = this.memory !== null || !!this.sab.growable;
+    /**
+     * A test's fault point (bus/faults.mjs), called with a point's name at
+     * each named point of this thread's bus operations; null (always, but
+     * in the fault tests).
+     * @type {?function(string): void}
+     */
+    this.faultPoint = null;
+    /**
+     * What this thread repaired when it last stole the registry lock from a
+     * dead owner (bus/recovery.mjs), or null.
+     * @type {?{pid: number, ok: boolean, blocks: number, leaked: number, orphans: number, slots: number}}
+     */
+    this.lastRecovery = null;
   }
 
   /** What another thread passes to Bus.attach(): the memory or the buffer. */
@@ -296,7 +310,10 @@ export class Bus {
     if (owner <= 0 || owner >= this.procCap) return false;
     const st = Atomics.load(this.i32, this.proc(owner) + PROCESS.STATE);
     if (st === PROC_ALIVE) return false;
-    return Atomics.compareExchange(this.i32, HEADER.LOCK, v, newValue) === v;
+    if (Atomics.compareExchange(this.i32, HEADER.LOCK, v, newValue) !== v) return false;
+    // The dead owner may have stopped in the middle of its critical section.
+    this.lastRecovery = { pid: owner, ...recoverArena(this, owner) };
+    return true;
   }
 
   /**

@@ -145,6 +145,7 @@ export class Runtime {
     this._watching = false;
     this._closed = false;
     this._tools = null;
+    this._toolsPid = 0;
     /** Bus processes of bridges in workers of their own (helperProcess): pid -> name. */
     this._helpers = new Map();
     /** Warm workers: started workers with the runtime modules loaded, waiting for a spawn. */
@@ -414,7 +415,7 @@ export class Runtime {
    * endpoints with QoS and gids), per domain.
    */
   graph() {
-    const procName = (pid) => (this.processes.get(pid) || {}).name || (this._tools && this._tools.pid === pid ? 'tools' : '')
+    const procName = (pid) => (this.processes.get(pid) || {}).name || (this._toolsPid === pid ? 'tools' : '')
       || this._helpers.get(pid) || '';
     return graphOf(this.bus.snapshot(), procName);
   }
@@ -487,6 +488,7 @@ export class Runtime {
     if (!this._tools) {
       this._tools = (async () => {
         const pid = await this._allocPid(PROC_KIND_TOOLS);
+        this._toolsPid = pid;
         return Tools.start(this, pid);
       })();
     }

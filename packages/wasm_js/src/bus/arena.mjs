@@ -96,8 +96,10 @@ export function free(bus, off) {
   bus.f64[(hw + BLOCK.FREED_F64) >> 1] = now();
   i32[HEADER.ARENA_USED] -= 2 ** (i32[hw + BLOCK.CLASS] + MIN_CLASS_SHIFT);
   const tail = i32[HEADER.QUAR_TAIL];
-  if (tail) i32[((tail - BLOCK_HEADER_BYTES) >> 2) + BLOCK.NEXT] = off;
-  else i32[HEADER.QUAR_HEAD] = off;
+  if (tail) {
+    i32[((tail - BLOCK_HEADER_BYTES) >> 2) + BLOCK.NEXT] = off;
+    if (bus.faultPoint !== null) bus.faultPoint('arena.freeing');
+  } else i32[HEADER.QUAR_HEAD] = off;
   i32[HEADER.QUAR_TAIL] = off;
 }
 
@@ -112,6 +114,7 @@ export function releaseQuarantine(bus) {
     if (t - bus.f64[(hw + BLOCK.FREED_F64) >> 1] < GRACE_MS) break;
     const next = i32[hw + BLOCK.NEXT];
     i32[HEADER.QUAR_HEAD] = next;
+    if (bus.faultPoint !== null) bus.faultPoint('arena.releasing');
     if (!next) i32[HEADER.QUAR_TAIL] = 0;
     const cls = i32[hw + BLOCK.CLASS];
     i32[hw + BLOCK.STATE] = BLOCK_FREE;
@@ -216,6 +219,7 @@ export function renewSlotBlock(bus, slot, bytes, owner) {
   bus.lock(owner);
   try {
     free(bus, bus.i32[slot + SLOT.BLOCK]);
+    if (bus.faultPoint !== null) bus.faultPoint('publish.renewing');
     const block = alloc(bus, bytes, owner);
     const i32 = bus.i32; // alloc() may have grown the bus
     i32[slot + SLOT.BLOCK] = block;

@@ -74,6 +74,7 @@ export function match(bus, idx, touched) {
       if (!checkCompatible(qosWords(bus, client), qosWords(bus, service)).ok ||
           !checkCompatible(qosWords(bus, service), qosWords(bus, client)).ok) continue;
       addLink(bus, client, service, LINK_BLOCKING);
+      if (bus.faultPoint !== null) bus.faultPoint('graph.matching');
       addLink(bus, service, client, LINK_BLOCKING | LINK_TARGETED);
       touched.add(i32[ob + ENDPOINT.PID]);
       continue;
@@ -97,6 +98,7 @@ export function match(bus, idx, touched) {
     if (rq[QOS.RELIABILITY] === Reliability.RELIABLE && rq[QOS.HISTORY] === History.KEEP_ALL) flags |= LINK_BLOCKING;
     if (rq[QOS.RELIABILITY] === Reliability.BEST_EFFORT) flags |= LINK_BEST_EFFORT;
     addLink(bus, writer, reader, flags);
+    if (bus.faultPoint !== null) bus.faultPoint('graph.matching');
   }
 }
 

@@ -87,6 +87,7 @@ export function createNode(bus, { pid, domain, context, name, namespace, enclave
   i32[b + NODE.NAME_LEN] = strs.lens[0];
   i32[b + NODE.NS_LEN] = strs.lens[1];
   i32[b + NODE.ENCLAVE_LEN] = strs.lens[2];
+  if (bus.faultPoint !== null) bus.faultPoint('graph.node_written');
   Atomics.store(i32, b + NODE.STATE, REC_ALIVE);
   return { index: idx, serial, nameTaken };
 }
@@ -180,6 +181,7 @@ export function createEndpoint(bus, spec) {
   f64[(b + ENDPOINT.DEADLINE_ACCT_BASE_F64) >> 1] = t;
   f64[(b + ENDPOINT.LIVE_LOST_BASE_F64) >> 1] = t;
   const touched = new Set([spec.pid]);
+  if (bus.faultPoint !== null) bus.faultPoint('graph.endpoint_written');
   Atomics.store(r32, b + ENDPOINT.STATE, REC_ALIVE);
   try {
     match(bus, idx, touched);
@@ -227,6 +229,7 @@ export function removeEndpoint(bus, index) {
       continue;
     }
     Atomics.store(i32, lb + LINK.STATE, REC_FREE);
+    if (bus.faultPoint !== null) bus.faultPoint('graph.removing');
     if (Atomics.load(i32, ob + ENDPOINT.STATE) === REC_ZOMBIE) zombies.add(other);
   }
   for (const z of zombies) freeZombieIfDrained(bus, z);

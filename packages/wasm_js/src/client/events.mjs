@@ -93,6 +93,7 @@ export function eventStatus(c, ep, type, take) {
   };
   lock(c.bus.i32, b + ENDPOINT.EVLOCK, c.pid);
   try {
+    if (bus.faultPoint !== null) bus.faultPoint('event.locked');
     let totalW = 0;
     let seenW = 0;
     switch (type) {

@@ -147,6 +147,7 @@ export function reapDrained(c, links) {
   const bus = c.bus;
   bus.lock(c.pid);
   try {
+    if (bus.faultPoint !== null) bus.faultPoint('take.reaping');
     bus.reapDrainedLinks(links);
     bus.bumpGraph();
   } finally {
@@ -169,6 +170,9 @@ export function takeCopy(c, dst, dstOff) {
   const i32 = bus.i32;
   const sw = st.slot;
   if (st.block < 0) return false;
+  // A test's fault point (bus/faults.mjs), read once: null but in the fault tests.
+  const fault = bus.faultPoint;
+  if (fault !== null) fault('take.found');
   const info = c.info;
   info.sourceTime = bus.f64[(sw + SLOT.TIME_F64) >> 1];
   info.pubSeqHi = i32[sw + SLOT.SEQ_HI];
@@ -183,8 +187,10 @@ export function takeCopy(c, dst, dstOff) {
     else copyBytes(dst, dstOff, bus.u8, st.block, len);
   }
   if (Atomics.load(i32, sw + SLOT.COMMIT) !== st.commit) return false;
+  if (fault !== null) fault('take.copied');
   const lb = bus.link(st.link);
   if (Atomics.compareExchange(i32, lb + LINK.CURSOR, st.cursor, (st.cursor + 1) | 0) !== st.cursor) return false;
+  if (fault !== null) fault('take.consumed');
   const rb = bus.ep(st.reader);
   const wb = bus.ep(st.writer);
   info.len = len;

@@ -34,7 +34,9 @@ export function mutate(c, fn) {
   bus.lock(c.pid);
   let result;
   try {
+    if (bus.faultPoint !== null) bus.faultPoint('graph.locked');
     result = fn();
+    if (bus.faultPoint !== null) bus.faultPoint('graph.changed');
   } finally {
     bus.bumpGraph();
     bus.unlock(c.pid);

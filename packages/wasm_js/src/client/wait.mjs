@@ -42,6 +42,7 @@ export function unregister(c) {
  */
 export function sleep(c, bell, ms) {
   if (c._beforeSleep !== null) firstSleep(c);
+  if (c.bus.faultPoint !== null) c.bus.faultPoint('wait.sleeping');
   Atomics.wait(c.bus.i32, c.bellIndex, bell, ms);
 }
 

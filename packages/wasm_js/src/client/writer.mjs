@@ -94,6 +94,8 @@ export function write(c, ep, src, srcOff, len, timeoutMs, target, targetSerial, 
   const slots = i32[b + ENDPOINT.RING_SLOTS];
   const ring = i32[b + ENDPOINT.RING_OFF] >> 2;
   lock(c.bus.i32, b + ENDPOINT.WLOCK, c.pid);
+  // A test's fault point (bus/faults.mjs), read once: null but in the fault tests.
+  const fault = bus.faultPoint;
   let seq;
   try {
     const n = i32[b + ENDPOINT.HEAD]; // only writers (under WLOCK) store it
@@ -103,6 +105,7 @@ export function write(c, ep, src, srcOff, len, timeoutMs, target, targetSerial, 
         !takenByAll(c, w, (n - slots) | 0, n) && blockingReader(c, w, (n - slots) | 0, sw) >= 0) {
       awaitSlot(c, ep, b, w, n, slots, sw, timeoutMs, op);
     }
+    if (fault !== null) fault('publish.locked');
     i32 = bus.i32;
     Atomics.store(i32, sw + SLOT.COMMIT, ~(n + 1));
     let block = i32[sw + SLOT.BLOCK];
@@ -129,7 +132,9 @@ export function write(c, ep, src, srcOff, len, timeoutMs, target, targetSerial, 
     i32[sw + SLOT.REQ_LO] = reqLo;
     i32[sw + SLOT.REQ_HI] = reqHi;
     bus.f64[(sw + SLOT.TIME_F64) >> 1] = t;
+    if (fault !== null) fault('publish.writing');
     Atomics.store(i32, sw + SLOT.COMMIT, (n + 1) | 0);
+    if (fault !== null) fault('publish.committed');
     if (((n + 1) | 0) === 0) i32[b + ENDPOINT.HEAD_HI] = hi;
     Atomics.store(i32, b + ENDPOINT.HEAD, (n + 1) | 0);
     bus.f64[(b + ENDPOINT.LAST_PUB_F64) >> 1] = t;
@@ -138,6 +143,7 @@ export function write(c, ep, src, srcOff, len, timeoutMs, target, targetSerial, 
   } finally {
     unlock(c.bus.i32, b + ENDPOINT.WLOCK, c.pid);
   }
+  if (fault !== null) fault('publish.unrung');
   const pids = w.pids;
   for (let i = 0; i < pids.length; i++) bus.ring(pids[i]);
   return seq;
@@ -172,6 +178,7 @@ export function awaitSlot(c, ep, b, w, n, slots, sw, timeoutMs, op) {
         throw new BusError(Code.TIMEOUT,
           `${op} on '${endpointName(c, ep)}' timed out after ${timeoutMs} ms: the ${KIND_NAMES[i32[rb + ENDPOINT.KIND]]} of node '${rname}' has not taken its oldest pending message and the writer's history of ${slots} messages is full (RELIABLE KEEP_ALL never drops); the message was not sent`);
       }
+      if (bus.faultPoint !== null) bus.faultPoint('publish.blocked');
       // Readers ring only every eighth of the ring (_ringWaitingWriter): look again meanwhile.
       sleep(c, bell, Math.min(deadline - t, ACK_RECHECK_MS));
       refresh(c);

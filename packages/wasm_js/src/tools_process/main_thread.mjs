@@ -52,8 +52,25 @@ export class Tools {
     this._pending = new Map();
     this._subscribers = new Map();
     this._defaultNodes = new Map();
+    this._closing = false;
+    /** Resolves once the worker has ended and its process left the bus (close(), or a crash). */
+    this.ended = null;
     worker.on('message', (m) => this._onMessage(m));
     worker.on('error', (e) => this._failAll(new BusError(1, `the tools worker failed: ${e.message}`)));
+    // A worker that ended by itself (Node.js tells; a browser's worker ends only when
+    // terminated): its process leaves the bus, and the runtime's next tools() starts anew.
+    worker.on('exit', ({ code }) => {
+      if (!this._closing) this._ended(`the tools worker exited (code ${code})`);
+    });
+  }
+
+  _ended(why) {
+    if (!this.ended) {
+      this._failAll(new BusError(1, why));
+      if (this._runtime._tools && this._runtime._toolsPid === this.pid) this._runtime._tools = null;
+      this.ended = this._runtime._reap(this.pid, null);
+    }
+    return this.ended;
   }
 
   _onMessage(m) {
@@ -201,10 +218,29 @@ export class Tools {
     return this._runtime.graph();
   }
 
+  /**
+   * Tests only: stop the tools worker at a fault point of its next bus
+   * operations (bus/faults.mjs), to kill it there.
+   * @param {{point: string, flag: SharedArrayBuffer, skip?: number}} spec
+   */
+  armFaultPoint(spec) {
+    return this._call('armFaultPoint', [spec]);
+  }
+
+  /**
+   * Terminate the tools worker as a crash would (tests): its process leaves
+   * the bus, and the runtime's next tools() starts a new one.
+   */
+  async kill() {
+    await this._worker.terminate();
+    await this._ended('the tools worker was killed');
+  }
+
   /** Stop the tools worker. */
   async close() {
+    this._closing = true;
     this._failAll(new BusError(1, 'the tools worker was closed'));
     await this._worker.terminate();
-    await this._runtime._reap(this.pid, null);
+    await this._ended('the tools worker was closed');
   }
 }

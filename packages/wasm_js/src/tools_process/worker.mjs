@@ -10,6 +10,7 @@
  */
 
 import { BusClient, KIND_CLIENT, KIND_PUBLISHER, KIND_SERVICE, KIND_SUBSCRIPTION, TakeMode } from '../bus_client.mjs';
+import { armFaultPoint } from '../bus/faults.mjs';
 import { FromTools, ToTools } from '../protocol.mjs';
 
 let client = null;
@@ -97,6 +98,21 @@ function drain() {
         p.resolve({ data, info: infoOf(client) });
       }
     }
+    if (pending.size && !client.serverAvailable(ep)) serversGone(ep, pending);
+  }
+}
+
+/**
+ * The servers a client's calls went to left the bus (stopped, or killed
+ * before they answered): an answer they committed was taken above, none
+ * can come now, so those calls fail at once rather than at their timeout.
+ */
+function serversGone(ep, pending) {
+  for (const [seq, p] of pending) {
+    if (!p.hadServer) continue; // sent before any server was there: its timeout tells
+    pending.delete(seq);
+    clearTimeout(p.timer);
+    p.reject(Object.assign(new Error(`service call to '${p.name}' failed: its server went away before it answered (no server of it is left on the bus)`), { code: 1 }));
   }
 }
 
@@ -182,12 +198,14 @@ const methods = {
     }
     const pending = clients.get(ep);
     return new Promise((resolve, reject) => {
+      // Before the request goes out: a server that dies right after it was sent was there.
+      const hadServer = client.serverAvailable(ep);
       const seq = client.publish(ep, request, timeoutMs);
       const timer = setTimeout(() => {
         pending.delete(seq);
         reject(Object.assign(new Error(`service call to '${spec.name}' timed out after ${timeoutMs} ms (server available: ${client.serverAvailable(ep)})`), { code: 2 }));
       }, timeoutMs);
-      pending.set(seq, { resolve, reject, timer });
+      pending.set(seq, { resolve, reject, timer, name: spec.name, hadServer });
       drain();
     });
   },
@@ -199,6 +217,10 @@ const methods = {
   },
   respond(ep, id, data, timeoutMs) {
     return client.sendResponse(ep, id.gid, id.seqLo, id.seqHi, data, timeoutMs);
+  },
+  /** Tests only: stop this worker at a fault point (bus/faults.mjs). */
+  armFaultPoint(spec) {
+    armFaultPoint(client.bus, spec);
   },
   destroy(ep) {
     subscriptions.delete(ep);
