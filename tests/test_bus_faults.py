@@ -11,7 +11,9 @@ a fault point (packages/wasm_js/src/bus/faults.mjs), its worker is
 terminated there and the runtime cleans up; the scenario then checks that
 the locks are free, the victim's endpoints are gone and the arena whole,
 its peers' events fired, and the live processes' traffic went on
-(docs/faults.md). Each scenario is bounded (40 s, fixed counts).
+(docs/faults.md). The demo_ scenarios kill the demo's C++ programs
+(demo/src, built by tests/demo_build.py) through the same fault points
+(Runtime.spawn's faultPoint). Each scenario is bounded (40 s, fixed counts).
 """
 
 import json
@@ -21,6 +23,7 @@ import shutil
 import subprocess
 
 from core import harness
+import demo_build
 import pytest
 
 HERE = Path(__file__).resolve().parent
@@ -55,16 +58,21 @@ def _run(*args, timeout):
 
 
 @pytest.fixture(scope='module')
-def node_results():
-    return _run('node', timeout=600)
+def demo():
+    return demo_build.demo_install()
 
 
 @pytest.fixture(scope='module')
-def chromium_results():
+def node_results(demo):
+    return _run('node', '--demo', str(demo), timeout=600)
+
+
+@pytest.fixture(scope='module')
+def chromium_results(demo):
     reason = harness.browser_skip_reason()
     if reason:
         pytest.skip(reason)
-    return _run('chromium', harness.CHROMIUM, timeout=900)
+    return _run('chromium', harness.CHROMIUM, '--demo', str(demo), timeout=900)
 
 
 def _check(results, name):

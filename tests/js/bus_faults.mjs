@@ -9,26 +9,47 @@
 // tests/test_bus_faults.py:
 //
 //   node bus_faults.mjs --list
-//   node bus_faults.mjs node [SCENARIO...]
-//   node bus_faults.mjs chromium /usr/bin/chromium [SCENARIO...]
+//   node bus_faults.mjs node [--demo INSTALL] [SCENARIO...]
+//   node bus_faults.mjs chromium /usr/bin/chromium [--demo INSTALL] [SCENARIO...]
+//
+// --demo: the demo's install space (demo/src built with colcon build --wasm),
+// for the scenarios that kill its C++ programs.
 
 import fs from 'node:fs';
 import http from 'node:http';
 import path from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 
-import { NODE_ONLY, runScenario, SCENARIOS } from './bus_faults_scenarios.mjs';
+import { DEMO, NODE_ONLY, runScenario, SCENARIOS } from './bus_faults_scenarios.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const wasmJs = path.resolve(here, '..', '..', 'packages', 'wasm_js');
-const args = process.argv.slice(2);
+let args = process.argv.slice(2);
+let demo = null;
+if (args.includes('--demo')) {
+  const at = args.indexOf('--demo');
+  demo = path.resolve(args[at + 1]);
+  args = [...args.slice(0, at), ...args.slice(at + 2)];
+}
+const DEMO_EXES = ['talker', 'add_two_ints_server'];
+
+/** The demo executables' paths: isolated (demo_nodes/lib/demo_nodes/) or merged layout. */
+function demoPaths() {
+  const out = {};
+  for (const exe of DEMO_EXES) {
+    const candidates = [path.join(demo, 'demo_nodes', 'lib', 'demo_nodes', `${exe}.js`), path.join(demo, 'lib', 'demo_nodes', `${exe}.js`)];
+    out[exe] = candidates.find((p) => fs.existsSync(p));
+    if (!out[exe]) throw new Error(`no ${exe}.js in the demo install ${demo}`);
+  }
+  return out;
+}
 
 function print(r) {
   process.stdout.write(`${JSON.stringify(r)}\n`);
 }
 
 if (args[0] === '--list') {
-  for (const name of Object.keys(SCENARIOS)) print({ scenario: name, nodeOnly: NODE_ONLY.has(name) });
+  for (const name of Object.keys(SCENARIOS)) print({ scenario: name, nodeOnly: NODE_ONLY.has(name), demo: DEMO.has(name) });
   process.exit(0);
 }
 
@@ -40,6 +61,7 @@ async function runNode(names) {
     layout: await import(`${src}layout.mjs`),
     src,
     workerUrl: pathToFileURL(path.join(here, 'bus_faults_worker.mjs')).href,
+    demo: demo && demoPaths(),
   };
   for (const name of names) print(await runScenario(name, env));
 }
@@ -56,28 +78,38 @@ const env = {
   layout: await import(src + 'layout.mjs'),
   src,
   workerUrl: new URL('/tests/bus_faults_worker.mjs', location.href).href,
+  demo: DEMO_URLS,
 };
 window.runScenario = (name) => runScenario(name, env);
 window.pageReady = true;
 </script>`;
 
-/** Serve /wasm_js/ (packages/wasm_js) and /tests/ (tests/js) cross-origin isolated. */
+const TYPES = { '.mjs': 'text/javascript', '.js': 'text/javascript', '.wasm': 'application/wasm', '.json': 'application/json' };
+
+/**
+ * Serve /wasm_js/ (packages/wasm_js), /tests/ (tests/js) and /demo/ (the demo's
+ * install space) cross-origin isolated.
+ */
 function serve() {
   const routes = [['/wasm_js/', wasmJs], ['/tests/', here]];
+  if (demo) routes.push(['/demo/', demo]);
   const server = http.createServer((req, res) => {
     const url = new URL(req.url, 'http://localhost');
     const isolated = { 'Cross-Origin-Opener-Policy': 'same-origin', 'Cross-Origin-Embedder-Policy': 'require-corp', 'Cache-Control': 'no-store' };
     if (url.pathname === '/faults.html') {
-      res.writeHead(200, { ...isolated, 'Content-Type': 'text/html' }).end(PAGE);
+      const urls = demo ? Object.fromEntries(Object.entries(demoPaths()).map(([exe, p]) => [exe, `/demo/${path.relative(demo, p)}`])) : null;
+      res.writeHead(200, { ...isolated, 'Content-Type': 'text/html' })
+        .end(PAGE.replace('DEMO_URLS', urls ? `Object.fromEntries(Object.entries(${JSON.stringify(urls)}).map(([k, v]) => [k, new URL(v, location.href).href]))` : 'null'));
       return;
     }
     const route = routes.find(([prefix]) => url.pathname.startsWith(prefix));
     const file = route && path.resolve(route[1], decodeURIComponent(url.pathname.slice(route[0].length)));
-    if (!file || !file.startsWith(route[1]) || !file.endsWith('.mjs') || !fs.existsSync(file)) {
+    const type = file && TYPES[path.extname(file)];
+    if (!type || !file.startsWith(route[1]) || !fs.existsSync(file) || !fs.statSync(file).isFile()) {
       res.writeHead(404).end();
       return;
     }
-    res.writeHead(200, { ...isolated, 'Content-Type': 'text/javascript' });
+    res.writeHead(200, { ...isolated, 'Content-Type': type });
     fs.createReadStream(file).pipe(res);
   });
   return new Promise((resolve) => server.listen(0, '127.0.0.1', () => resolve(server)));
@@ -115,12 +147,13 @@ async function runChromium(chromium, names) {
 const platform = args[0];
 if (platform === 'node') {
   const names = args.slice(1);
-  await runNode(names.length ? names : Object.keys(SCENARIOS));
+  await runNode(names.length ? names : Object.keys(SCENARIOS).filter((n) => demo || !DEMO.has(n)));
 } else if (platform === 'chromium' && args[1]) {
   const names = args.slice(2);
-  await runChromium(args[1], names.length ? names : Object.keys(SCENARIOS).filter((n) => !NODE_ONLY.has(n)));
+  await runChromium(args[1], names.length ? names
+    : Object.keys(SCENARIOS).filter((n) => !NODE_ONLY.has(n) && (demo || !DEMO.has(n))));
 } else {
-  process.stderr.write('usage: node bus_faults.mjs --list | node [SCENARIO...] | chromium CHROMIUM [SCENARIO...]\n');
+  process.stderr.write('usage: node bus_faults.mjs --list | node [--demo INSTALL] [SCENARIO...] | chromium CHROMIUM [--demo INSTALL] [SCENARIO...]\n');
   process.exit(2);
 }
 process.exit(0);

@@ -784,6 +784,154 @@ async function toolsExit(ctx) {
   ctx.facts.new_tools = `pid ${again.pid}`;
 }
 
+// ------------------------------------------------- wasm programs (the demo)
+
+/** Resolve when pred(rt.graph()) holds, looking every 20 ms for at most 10 s. */
+async function graphHolds(ctx, pred, what) {
+  ctx.step = `waiting for ${what}`;
+  const deadline = performance.now() + 10000;
+  while (!pred(ctx.rt.graph())) {
+    expect(performance.now() < deadline, `${what}: not within 10 s`);
+    await sleep(20);
+  }
+}
+
+/** Spawn a demo executable (demo_nodes) with a fault point armed on its main thread. */
+async function spawnArmed(ctx, exe, args, point, skip = 0) {
+  const flag = newFlag();
+  const lines = [];
+  const proc = await ctx.rt.spawn({
+    url: ctx.env.demo[exe], args, name: exe, faultPoint: { point, flag: flag.buffer, skip },
+    onLog: ({ text }) => { if (lines.length < 50) lines.push(text); },
+  });
+  proc.lines = lines;
+  proc.flag = flag;
+  return proc;
+}
+
+async function programStopped(ctx, proc, point) {
+  ctx.step = `${proc.name} stopping at ${point}`;
+  await reached(proc.flag, proc.exited, `${proc.name} (log: ${proc.lines.join(' | ')})`);
+  ctx.facts.stopped = point;
+}
+
+/** Kill a program where it stopped: NodeProcess.stop() (terminate, then the runtime's cleanup). */
+async function stopProgram(ctx, proc) {
+  ctx.step = `stopping ${proc.name}`;
+  ctx.rt.bus.lastRecovery = null;
+  await proc.stop();
+  const r = ctx.rt.bus.lastRecovery;
+  if (r) ctx.facts.recovered = `lock of ${r.pid === proc.id ? 'the victim' : r.pid}: ${r.leaked} leaked blocks, ${r.slots} slots, ${r.orphans} zombies`;
+  checkLockFree(ctx);
+  checkGone(ctx, { pid: proc.id });
+}
+
+/** The count of a demo_interfaces/msg/Chatter message ("Hello World: N", N). */
+function chatterCount(bytes) {
+  const u8 = Uint8Array.from(bytes);
+  const v = new DataView(u8.buffer);
+  const len = v.getUint32(4, true);
+  const at = 8 + len + ((4 - ((len + 4) % 4)) % 4);
+  return v.getUint32(at, true);
+}
+
+const CHATTER = { type: 'demo_interfaces/msg/Chatter' };
+
+/**
+ * demo_talker@publish.writing: the demo's C++ talker (wasm_cpp) is killed
+ * in the middle of its sixth publish; the subscriber got the five before,
+ * its liveliness changed, and a new talker's messages all arrive.
+ */
+async function demoTalker(ctx) {
+  const [sub] = await procs(ctx, 'subscriber');
+  const sSub = await sub.endpoint('subscription', await sub.call('node', 'subscriber'), '/chatter', KEEP_ALL, CHATTER);
+  const first = sub.call('waitTake', sSub, 'subscription', 5, STUCK_MS, true);
+  const talker = await spawnArmed(ctx, 'talker', ['--ros-args', '-p', 'rate:=200', '-r', '__node:=talker_a'], 'publish.writing', 5);
+  await programStopped(ctx, talker, 'publish.writing');
+  const five = await first;
+  expect((await sub.call('event', sSub, 'LIVELINESS_CHANGED')).alive === 1, 'the talker was alive before the kill');
+  await stopProgram(ctx, talker);
+  expect(await sub.call('matched', sSub) === 0, 'the subscription still counts the killed talker');
+  const live = await sub.call('event', sSub, 'LIVELINESS_CHANGED');
+  expect(live.alive === 0 && live.aliveChange === -1, `liveliness after the kill: ${JSON.stringify(live)}`);
+  ctx.facts.liveliness = `alive ${live.alive} (${live.aliveChange})`;
+  const rest = await sub.call('take', sSub, 'subscription', 100, true);
+  const counts = [...five, ...rest].map((m) => chatterCount(m.bytes));
+  expect(counts.join() === '1,2,3,4,5', `the subscriber got the killed talker's messages ${counts}`);
+  ctx.facts.victim_messages = counts.length;
+  const next = sub.call('waitTake', sSub, 'subscription', 50, STUCK_MS, true);
+  const other = await ctx.rt.spawn({ url: ctx.env.demo.talker, args: ['--ros-args', '-p', 'rate:=200', '-r', '__node:=talker_b'], name: 'talker_b' });
+  ctx.step = 'the new talker\'s messages';
+  const got = (await next).map((m) => chatterCount(m.bytes));
+  expect(got.length === 50 && got.every((n, i) => n === i + 1), `the new talker's messages: ${got}`);
+  ctx.facts.traffic = got.length;
+  await other.stop();
+  await checkArena(ctx);
+}
+
+/**
+ * demo_talker@graph.endpoint_written: the C++ talker is killed creating its
+ * publisher (the registry lock held); a process blocked on the lock goes on.
+ */
+async function demoTalkerCreating(ctx) {
+  const [late] = await procs(ctx, 'late');
+  const talker = await spawnArmed(ctx, 'talker', ['--ros-args', '-r', '__node:=talker_a'], 'graph.endpoint_written');
+  await programStopped(ctx, talker, 'graph.endpoint_written');
+  const blocked = await blockOnLock(ctx, 'graph.endpoint_written', late);
+  await stopProgram(ctx, talker);
+  await unblocked(ctx, blocked);
+  await checkArena(ctx);
+  const sSub = await late.endpoint('subscription', await late.call('node', 'listener'), '/chatter', KEEP_ALL, CHATTER);
+  const next = late.call('waitTake', sSub, 'subscription', 3, STUCK_MS, true);
+  const other = await ctx.rt.spawn({ url: ctx.env.demo.talker, args: ['--ros-args', '-p', 'rate:=100'], name: 'talker' });
+  ctx.step = 'a new talker\'s messages';
+  expect((await next).length === 3, 'a new talker\'s messages did not arrive');
+  await other.stop();
+  ctx.facts.traffic = 3;
+}
+
+/** An AddTwoInts request (CDR): a, b as int64. */
+function addTwoInts(a, b) {
+  const u8 = new Uint8Array(20);
+  const v = new DataView(u8.buffer);
+  u8[1] = 1;
+  v.setBigInt64(4, BigInt(a), true);
+  v.setBigInt64(12, BigInt(b), true);
+  return u8;
+}
+
+/**
+ * demo_server@publish.writing: the demo's C++ add_two_ints_server is killed
+ * in the middle of its answer; the tools' call ends with an error at once,
+ * and a new server answers.
+ */
+async function demoServer(ctx) {
+  const server = await spawnArmed(ctx, 'add_two_ints_server', [], 'publish.writing');
+  const hasServer = (g) => g.services.some((s) => s.name === '/add_two_ints' && s.servers.length);
+  await graphHolds(ctx, hasServer, 'the server');
+  const tools = await ctx.rt.tools();
+  const spec = { service: '/add_two_ints', type: 'demo_interfaces/srv/AddTwoInts', timeoutMs: 20000 };
+  const call = tools.call(spec, addTwoInts(2, 3));
+  call.catch(() => {});
+  await programStopped(ctx, server, 'publish.writing');
+  const t = performance.now();
+  await stopProgram(ctx, server);
+  let message = null;
+  await call.then(() => {}, (e) => { message = e.message; });
+  const ms = performance.now() - t;
+  expect(message && /went away/.test(message), `the call to the killed server ended with: ${message}`);
+  expect(ms < spec.timeoutMs, 'the call ended only at its timeout');
+  ctx.facts.call = `failed ${Math.round(ms)} ms after the kill (timeout ${spec.timeoutMs} ms): ${message}`;
+  const again = await ctx.rt.spawn({ url: ctx.env.demo.add_two_ints_server, args: [], name: 'add_two_ints_server' });
+  await graphHolds(ctx, hasServer, 'the new server');
+  const r = await tools.call(spec, addTwoInts(40, 2));
+  const sum = new DataView(r.data.buffer, r.data.byteOffset).getBigInt64(4, true);
+  expect(sum === 42n, `the new server answered ${sum}`);
+  ctx.facts.calls = 1;
+  await again.stop();
+  await checkArena(ctx);
+}
+
 /** Every scenario: name -> function(ctx); `node` only where browsers cannot tell. */
 export const SCENARIOS = {
   'publish.locked': (ctx) => publishKill(ctx, 'publish.locked'),
@@ -816,7 +964,13 @@ export const SCENARIOS = {
   'tools@publish.writing': (ctx) => toolsKill(ctx, 'publish.writing'),
   'tools@graph.locked': (ctx) => toolsKill(ctx, 'graph.locked'),
   tools_exit: toolsExit,
+  'demo_talker@publish.writing': demoTalker,
+  'demo_talker@graph.endpoint_written': demoTalkerCreating,
+  'demo_server@publish.writing': demoServer,
 };
+
+/** Scenarios that run the demo's wasm programs (env.demo: executable name -> URL). */
+export const DEMO = new Set(Object.keys(SCENARIOS).filter((n) => n.startsWith('demo_')));
 
 /** Scenarios that need Node.js (a browser gives no event when a worker ends). */
 export const NODE_ONLY = new Set(['tools_exit']);
@@ -825,12 +979,14 @@ export const NODE_ONLY = new Set(['tools_exit']);
  * Run one scenario.
  * @param {string} name
  * @param {object} env {Runtime, ProgramWorker, layout (layout.mjs), src: the URL of
- *   wasm_js/src/ (with its slash), workerUrl: bus_faults_worker.mjs}
+ *   wasm_js/src/ (with its slash), workerUrl: bus_faults_worker.mjs, demo: the demo's
+ *   executables (name -> URL or path) for the demo_ scenarios}
  * @returns {Promise<{scenario: string, ok: boolean, error?: string, step?: string, facts: object, ms: number}>}
  */
 export async function runScenario(name, env) {
   const fn = SCENARIOS[name];
   if (!fn) return { scenario: name, ok: false, error: `unknown scenario '${name}'`, facts: {}, ms: 0 };
+  if (DEMO.has(name) && !env.demo) return { scenario: name, ok: false, error: 'no demo install given (--demo)', facts: {}, ms: 0 };
   const t0 = performance.now();
   const rt = await env.Runtime.create({ warmWorkers: 0, maxEndpoints: 64 });
   const ctx = { env, rt, procs: [], facts: {}, errors: [], step: 'setting up' };

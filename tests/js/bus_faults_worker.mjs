@@ -67,18 +67,18 @@ const methods = {
     for (let i = 0; i < count; i++) seq = client.publish(ep, message(tag, from + i, size), timeoutMs);
     return seq;
   },
-  /** Take what is there now (at most `max`). */
-  take(ep, kind = 'subscription', max = 100000) {
+  /** Take what is there now (at most `max`; raw: with the bytes). */
+  take(ep, kind = 'subscription', max = 100000, raw = false) {
     const got = [];
     let data;
-    while (got.length < max && (data = client.take(ep, MODES[kind]))) got.push(taken(data));
+    while (got.length < max && (data = client.take(ep, MODES[kind]))) got.push(taken(data, raw));
     return got;
   },
   /**
    * Wait (a wait set, as an executor) until `count` messages were taken or
    * `timeoutMs` passed; returns what was taken.
    */
-  waitTake(ep, kind, count, timeoutMs) {
+  waitTake(ep, kind, count, timeoutMs, raw = false) {
     const items = new Int32Array(api.WAIT_ITEM_WORDS);
     items[0] = { subscription: api.WaitKind.SUBSCRIPTION, service: api.WaitKind.SERVICE, client: api.WaitKind.CLIENT }[kind];
     items[1] = ep;
@@ -89,7 +89,7 @@ const methods = {
       if (left <= 0) break;
       if (client.wait(items, 0, 1, left, items) <= 0) continue;
       let data;
-      while (got.length < count && (data = client.take(ep, MODES[kind]))) got.push(taken(data));
+      while (got.length < count && (data = client.take(ep, MODES[kind]))) got.push(taken(data, raw));
     }
     return got;
   },
@@ -118,9 +118,11 @@ const methods = {
   },
 };
 
-function taken(data) {
+function taken(data, raw = false) {
   const i = client.info;
-  return { ...decode(data), gid: Array.from(i.gid), reqLo: i.reqLo, reqHi: i.reqHi };
+  const m = { ...decode(data), gid: Array.from(i.gid), reqLo: i.reqLo, reqHi: i.reqHi };
+  if (raw) m.bytes = Array.from(data);
+  return m;
 }
 
 async function onMessage(m) {

@@ -9,6 +9,7 @@
  * @module program_worker
  */
 
+import { armFaultPoint } from './bus/faults.mjs';
 import { BusClient } from './bus_client.mjs';
 import { isNode } from './platform.mjs';
 import { FromWorker, UNCAUGHT_EXCEPTION } from './protocol.mjs';
@@ -357,6 +358,7 @@ export async function startProcess(msg, platform) {
   };
   try {
     const client = BusClient.attach(msg.bus, msg.pid);
+    if (msg.faultPoint) armFaultPoint(client.bus, msg.faultPoint); // tests only
     const module = msg.wasmModule || await platform.compile(msg.wasmUrl);
     const env = msg.env || {};
     const Module = {

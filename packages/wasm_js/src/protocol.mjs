@@ -18,7 +18,8 @@ export const ToWorker = Object.freeze({
    * {type, bus, pid, url, wasmUrl, glueFile, args, env, name, wasmModule, stdin (SharedArrayBuffer
    * of a StdinPipe, or null), files, mounts ([{path, url?}]: read-only views, see view_fs.mjs),
    * scripts (absolute URL -> text: the glue and pthread worker script, prefetched in browsers;
-   * may be empty), busModuleUrl, workerModuleUrl}
+   * may be empty), busModuleUrl, workerModuleUrl, faultPoint (tests only: {point, flag, skip}
+   * of bus/faults.mjs, or null)}
    */
   START: 'start',
 });

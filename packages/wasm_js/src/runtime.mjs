@@ -301,6 +301,9 @@ export class Runtime {
    * @param {boolean} [spec.filesOptional=false] an executable linked without a file system
    *   (which reads no files) starts without `files` instead of failing (a launch file's
    *   parameters given to a program that is no ROS node)
+   * @param {{point: string, flag: SharedArrayBuffer, skip?: number}} [spec.faultPoint] tests
+   *   only: stop the program's main thread at this fault point of its bus operations
+   *   (bus/faults.mjs), to kill it there
    * @param {Array<{path: string, url?: string, leftOut?: object}>} [spec.mounts] read-only
    *   views of host directories (install spaces), at the same absolute paths in the
    *   executable, mounted before main() runs and read lazily: from the host's files under
@@ -365,6 +368,7 @@ export class Runtime {
     });
     worker.postMessage({
       type: ToWorker.START, bus: this.bus.handle, pid, url, wasmUrl, glueFile, args, env, name, wasmModule, stdin: stdinPipe && stdinPipe.sab, files, filesOptional: !!spec.filesOptional, mounts, scripts,
+      faultPoint: spec.faultPoint || null,
       busModuleUrl: siblingUrl('bus_client.mjs'), workerModuleUrl: siblingUrl('program_worker.mjs'),
     });
     return proc;
