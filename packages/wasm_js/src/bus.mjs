@@ -12,12 +12,16 @@
  *   registry.mjs  process, node and endpoint records; gids
  *   matching.mjs  matching endpoints into links
  *   graph.mjs     graph snapshots
+ *   recovery.mjs  the arena repaired after a dead owner's lock is stolen
+ *   faults.mjs    named fault points where the fault tests kill a thread
  *
  * Registry mutations happen under one short lock that records its owner's
  * process id; each record is committed by a final store of its STATE word
  * and retracted by clearing it first, and every committed change bumps the
  * graph version (which is also the graph doorbell). The page's main thread
- * never blocks on the lock: it uses `lockAsync()`.
+ * never blocks on the lock: it uses `lockAsync()`. Whoever steals the lock
+ * from a dead owner first repairs what its critical section may have left
+ * half done (bus/recovery.mjs, docs/faults.md).
  *
  * @module bus
  */
@@ -260,7 +264,8 @@ export class Bus {
   }
 
   /**
-   * Try to take the registry lock without blocking; also steals it from a dead owner.
+   * Try to take the registry lock without blocking; also steals it from a dead
+   * owner, then repairs the arena (bus/recovery.mjs) before returning.
    * @param {number} pid
    * @returns {boolean}
    */
