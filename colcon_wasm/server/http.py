@@ -10,6 +10,12 @@ listing; HTTP/1.1 keep-alive; one thread per connection. WebSockets:
 ``/rosbridge`` (serve --rosbridge, relay_http.py), ``/bag`` (the page's
 record and replay, bag_socket.py), whose recordings are ``/bag/files/...``,
 and ``/launch`` (the page's launch files, launch_socket.py).
+
+Bound to a loopback address (the default), the server answers only requests
+whose ``Host`` is a loopback name (``localhost``, ``127.0.0.1``, ``[::1]``):
+a web page of another site that makes its own name resolve to 127.0.0.1
+(DNS rebinding) would otherwise be same-origin with the answers, read the
+install space and start its launch files (docs/security.md).
 """
 
 import errno
@@ -23,6 +29,7 @@ from urllib.parse import urlsplit
 
 from colcon_core.logging import colcon_logger
 from colcon_wasm.error import ColconWasmError
+from colcon_wasm.launch.rosbridge import is_loopback
 from colcon_wasm.server.bag_socket import BAG_PATH
 from colcon_wasm.server.bag_socket import BagService
 from colcon_wasm.server.bag_socket import FILES_PREFIX
@@ -80,8 +87,36 @@ class LauncherRequestHandler(BaseHTTPRequestHandler):
         super().setup()
         self.connection.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
 
+    def _misdirected(self):
+        """
+        Refuse a request for another name than this loopback server's (DNS rebinding).
+
+        :returns: True when the request was answered with 403
+        """
+        if not self.server.loopback_only:
+            return False  # --host: reached by names this server cannot know
+        host = self.headers.get('Host')
+        if host is None:
+            return False  # HTTP/1.0 clients; browsers always send Host
+        try:
+            name = urlsplit('//' + host.strip()).hostname
+        except ValueError:
+            name = None
+        if name is not None and is_loopback(name):
+            return False
+        where = self.server.server_address[0]
+        self._error(HTTPStatus.FORBIDDEN,
+                    f'this colcon-wasm serve listens on {where} and answers requests for '
+                    f'localhost, 127.0.0.1 and [::1] only, not for {host!r} (a guard against '
+                    'DNS rebinding: a web page of another site must not reach it under a name '
+                    f'of its own); open {self.server.url}, or pass --host to serve other names')
+        self.close_connection = True
+        return True
+
     def do_GET(self):  # noqa: N802 the name http.server calls
         """Answer a GET request."""
+        if self._misdirected():
+            return
         path = urlsplit(self.path).path
         relay = getattr(self.server, 'relay', None)
         if relay is not None and path == '/rosbridge':
@@ -119,6 +154,8 @@ class LauncherRequestHandler(BaseHTTPRequestHandler):
 
     def do_HEAD(self):  # noqa: N802
         """Answer a HEAD request."""
+        if self._misdirected():
+            return
         self._respond(send_body=False)
 
     def _method_not_allowed(self):
@@ -225,6 +262,8 @@ class LauncherServer(ThreadingHTTPServer):
         :raises ServeError: when the address is taken or cannot be bound
         """
         self.site = site
+        #: bound to a loopback address: requests must name a loopback host (_misdirected)
+        self.loopback_only = is_loopback(host)
         self.compression = CompressionCache()
         #: the page's record and replay (/bag), bag_socket.py
         self.bags = BagService(site.install_space)

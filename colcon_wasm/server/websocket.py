@@ -9,9 +9,11 @@ blocks whoever sends to it: what waits for it is counted, and past
 ``max_queued_bytes`` the peer is cut off. Text and binary messages,
 fragmentation, ping/pong and close; no extensions. A message larger than
 ``max_message_bytes`` is skipped and reported to ``on_oversize``; the
-connection stays up. :func:`connect` opens the client side (``colcon-wasm
-record`` against a rosbridge server): the same connection, with masked
-frames out and unmasked frames in.
+connection stays up. A control frame (close, ping, pong) over 125 bytes, or
+fragmented, closes the connection (1002) before its payload is read.
+:func:`connect` opens the client side (``colcon-wasm record`` against a
+rosbridge server): the same connection, with masked frames out and unmasked
+frames in.
 """
 
 import base64
@@ -27,6 +29,8 @@ from colcon_wasm.error import ColconWasmError
 
 GUID = '258EAFA5-E914-47DA-95CA-C5AB0DC85B11'
 TEXT, BINARY, CLOSE, PING, PONG = 0x1, 0x2, 0x8, 0x9, 0xA
+MAX_CONTROL_BYTES = 125  # RFC 6455 5.5: close, ping and pong carry at most 125 bytes
+CLOSE_TIMEOUT = 2.0  # seconds what is queued (and the close frame) may take to go out at the end
 
 
 class WebSocketError(ColconWasmError):
@@ -188,6 +192,11 @@ class Connection:
             while not self.closed:
                 opcode, fin, n, key = self._frame()
                 if opcode >= 0x8:
+                    if not fin or n > MAX_CONTROL_BYTES:
+                        # refused before reading it: a ping that claims 2^63 bytes is no
+                        # allocation of that size
+                        raise WebSocketError(1002, 'a control frame is fragmented or longer '
+                                                   'than 125 bytes (RFC 6455 5.5)')
                     payload = _unmask(self._recv_exact(n), key)
                     if opcode == PING:
                         self._enqueue(encode_frame(PONG, payload, self.client))
@@ -229,6 +238,9 @@ class Connection:
             pass
         finally:
             self.close()
+            # the close frame goes out before the caller closes the socket (the server's
+            # handler closes it as soon as this returns)
+            self._writer.join(timeout=CLOSE_TIMEOUT)
 
     def send(self, data):
         """Queue a text (str) or binary (bytes) message; False once closed or cut off."""

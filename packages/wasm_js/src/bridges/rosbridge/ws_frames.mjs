@@ -183,6 +183,8 @@ export class FrameParser {
         ? 'a client frame is not masked (RFC 6455 5.1)' : 'a server frame is masked (RFC 6455 5.1)');
     }
     const data = opcode < 0x8;
+    // before its payload is buffered: a ping that claims 2^53 bytes is refused at its header
+    if (!data && (!fin || len > 125)) throw new FrameError(CloseCode.PROTOCOL_ERROR, 'a control frame is fragmented or longer than 125 bytes');
     if (data && (this._skipMessage || len > this.maxMessageBytes || this._partsBytes + len > this.maxMessageBytes)) {
       if (!this.onOversize) throw new FrameError(CloseCode.TOO_BIG, `a message of more than ${this.maxMessageBytes} bytes (the limit) was sent`);
       this._take(headerBytes);
