@@ -20,6 +20,7 @@ import argparse
 from pathlib import Path
 import shlex
 import shutil
+import subprocess
 import sys
 
 
@@ -112,18 +113,18 @@ def export(target, base, runs):
     :param list runs: the executables the page starts ('PKG/EXE [ARGS]')
     :returns: the exit code of the export (nonzero when it failed)
     """
-    from colcon_wasm.cli import main as colcon_wasm
+    # the colcon-wasm command itself (installed beside this Python), as a user runs it
+    command = Path(sys.executable).parent / 'colcon-wasm'
+    if not command.is_file():
+        command = shutil.which('colcon-wasm')
+    if command is None:
+        print('[BLASM]: -e: the colcon-wasm command is not on PATH: install colcon-wasm '
+              '(pip install .) in this environment', file=sys.stderr)
+        return 1
     args = ['export', target, '--install-base', base] + [f'--run={r}' for r in runs]
     print('[BLASM]: colcon-wasm ' + ' '.join(shlex.quote(a) for a in args))
-    try:
-        rc = colcon_wasm(args)
-    except SystemExit as e:
-        # a ColconWasmError's one line, or argparse's usage error (printed)
-        if isinstance(e.code, str):
-            print(e.code, file=sys.stderr)
-            rc = 1
-        else:
-            rc = e.code or 0
+    sys.stdout.flush()
+    rc = subprocess.run([str(command), *args]).returncode
     if rc:
         print(f"[BLASM]: -e: exporting '{base}' into '{target}' failed (exit "
               f'code {rc}, the reason is above); the build itself succeeded',
