@@ -12,9 +12,10 @@
 //   1. the locks are free: a process that was blocked on the registry lock
 //      goes on, another process completes the same operation, and the
 //      victim's endpoint records are reused with their writer and event locks;
-//   2. the victim's nodes and endpoints are gone from the graph, and the
-//      arena is whole (every block on the one list its state says, none
-//      leaked, no record pointing at a freed block);
+//   2. the victim's nodes and endpoints are gone from the graph (and the
+//      runtime's graph listeners were told), and the arena is whole (every
+//      block on the one list its state says, none leaked, no record
+//      pointing at a freed block);
 //   3. its peers' events: matched counts drop, a subscription's liveliness
 //      changes, a call to a server that went away ends with an error;
 //   4. traffic between the live processes goes on: no RELIABLE message
@@ -340,11 +341,31 @@ async function unblocked(ctx, blocked) {
   ctx.facts.lock_waiter = 'went on';
 }
 
+/**
+ * Run `killing()`, and expect the runtime's graph listeners to be told of a
+ * graph without process `pid` (within 5 s).
+ */
+async function graphEventWithout(ctx, pid, killing) {
+  let told = false;
+  const off = ctx.rt.onGraphChange((g) => {
+    if (!g.nodes.some((n) => n.pid === pid)) told = true;
+  });
+  try {
+    await killing();
+    const deadline = performance.now() + 5000;
+    while (!told && performance.now() < deadline) await sleep(10);
+  } finally {
+    off();
+  }
+  expect(told, 'no graph change without the killed process reached onGraphChange');
+  ctx.facts.graph_event = true;
+}
+
 /** Kill the victim (it stopped at a point) and record what the cleanup repaired. */
 async function kill(ctx, victim) {
   ctx.step = `killing ${victim.name}`;
   ctx.rt.bus.lastRecovery = null;
-  await victim.kill();
+  await graphEventWithout(ctx, victim.pid, () => victim.kill());
   const r = ctx.rt.bus.lastRecovery;
   if (r) ctx.facts.recovered = `lock of ${r.pid === victim.pid ? 'the victim' : r.pid}: ${r.leaked} leaked blocks, ${r.slots} slots, ${r.orphans} zombies`;
   checkLockFree(ctx);
@@ -747,7 +768,7 @@ async function toolsKill(ctx, point) {
   ctx.facts.stopped = point;
   const blocked = await blockOnLock(ctx, point, late);
   ctx.step = 'killing the tools';
-  await tools.kill();
+  await graphEventWithout(ctx, tools.pid, () => tools.kill());
   await unblocked(ctx, blocked);
   checkLockFree(ctx);
   checkGone(ctx, { pid: tools.pid });
@@ -819,7 +840,7 @@ async function programStopped(ctx, proc, point) {
 async function stopProgram(ctx, proc) {
   ctx.step = `stopping ${proc.name}`;
   ctx.rt.bus.lastRecovery = null;
-  await proc.stop();
+  await graphEventWithout(ctx, proc.id, () => proc.stop());
   const r = ctx.rt.bus.lastRecovery;
   if (r) ctx.facts.recovered = `lock of ${r.pid === proc.id ? 'the victim' : r.pid}: ${r.leaked} leaked blocks, ${r.slots} slots, ${r.orphans} zombies`;
   checkLockFree(ctx);
