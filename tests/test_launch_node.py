@@ -81,9 +81,8 @@ def test_a_crash_makes_the_exit_status_non_zero(install):
     assert code == 1, out + err
     assert re.search(r'^\[ERROR\] \[crasher-2\]: process has died \[exit code 1, .*crasher\.js',
                      err, re.MULTILINE), err
-    # the crasher dies after 2 s; the talker (1 Hz; with no subscriber its first message
-    # goes out one period after its start) goes on until --duration stops it
-    assert '[talker-1] [INFO]' in out and "Publishing: 'Hello World: 3'" in out, out
+    # the crasher dies after 2 s; the talker (1 Hz) goes on until --duration stops it
+    assert '[talker-1] [INFO]' in out and "Publishing: 'Hello World: 4'" in out, out
 
 
 def test_run_with_arguments_and_echo(install):

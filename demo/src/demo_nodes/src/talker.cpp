@@ -1,13 +1,9 @@
 // Copyright 2026 colcon-wasm contributors
 // Licensed under the Apache License, Version 2.0
 
-// Publishes demo_interfaces/msg/Chatter "Hello World: N" on /chatter every
-// 1/rate seconds (-p rate:=HZ, default 1), keeping the last -p depth:=N
-// messages for its subscribers (QoS history depth, default 10). The first
-// goes out as soon as a subscriber has matched, and at the latest one period
-// after the start (when a ROS talker's timer first fires): a listener started
-// with the talker hears message 1, as a volatile subscriber that joined
-// before the first publish does natively, and without waiting a period.
+// Publishes demo_interfaces/msg/Chatter "Hello World: N" on /chatter, first
+// at once, then every 1/rate seconds (-p rate:=HZ, default 1), keeping the
+// last -p depth:=N messages for its subscribers (QoS history depth, default 10).
 
 #include <chrono>
 #include <string>
@@ -32,13 +28,6 @@ int main(int argc, char ** argv)
     wasm_cpp::Publisher::make(node, topic, "demo_interfaces/msg/Chatter", qos),
     name, "creating the publisher");
   auto period = std::chrono::duration<double>(1.0 / (rate > 0 ? rate : 1.0));
-  auto first = std::chrono::steady_clock::now() +
-    std::chrono::duration_cast<std::chrono::steady_clock::duration>(period);
-  while (publisher->matched_subscription_count() == 0 &&
-    std::chrono::steady_clock::now() < first)
-  {
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  }
   for (uint32_t count = 1;; ++count) {
     demo_nodes::CdrWriter cdr;
     std::string data = text + ": " + std::to_string(count);
