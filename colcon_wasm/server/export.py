@@ -42,6 +42,7 @@ from colcon_wasm.server.export_select import select_packages
 from colcon_wasm.server.export_select import SelectionError
 from colcon_wasm.server.site import GATEWAY_FILES
 from colcon_wasm.server.site import PAGE_MODULE
+from colcon_wasm.server.site import run_entry
 
 MARKER = '.colcon-wasm-export.json'
 SERVICE_WORKER = 'coi_sw.js'
@@ -256,12 +257,10 @@ def first_visit_paths(site, workspace, runs):
     paths += [url.lstrip('/') for url in site.module_graph([PAGE_MODULE, runtime])]
     paths += [url.lstrip('./') for url in workspace['types']]
     for spec in runs:
-        package, _, name = spec.split(' ')[0].partition('/')
-        for p in workspace['packages']:
-            for e in p['executables']:
-                if p['name'] == package and e['name'] == name:
-                    stem = e['url'].lstrip('./')[:-len('.js')]
-                    paths += [f'{stem}.js', f'{stem}.wasm', f'{stem}.worker.js']
+        entry = run_entry(workspace, spec)
+        if entry is not None:
+            stem = entry['url'].lstrip('./')[:-len('.js')]
+            paths += [f'{stem}.js', f'{stem}.wasm', f'{stem}.worker.js']
     return paths
 
 

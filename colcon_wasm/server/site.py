@@ -77,6 +77,16 @@ class Content:
         self.precompressed = precompressed
 
 
+def run_entry(workspace, spec):
+    """Return the workspace's entry of a ``PKG/EXE [ARGS]`` executable (``?run=``), or None."""
+    package, _, executable = spec.split(' ')[0].partition('/')
+    for p in workspace['packages']:
+        for e in p['executables']:
+            if p['name'] == package and e['name'] == executable:
+                return e
+    return None
+
+
 class Site:
     """Maps URL paths of the launcher to content."""
 
@@ -392,11 +402,9 @@ class Site:
         modules = [root + url[1:] for url in self.module_graph([PAGE_MODULE, runtime])]
         preload = []
         for spec in (query or {}).get('run', []):
-            package, _, executable = spec.split(' ')[0].partition('/')
-            for p in workspace['packages']:
-                for e in p['executables']:
-                    if p['name'] == package and e['name'] == executable:
-                        preload.append(e['url'][:-len('.js')] + '.wasm')
+            entry = run_entry(workspace, spec)
+            if entry is not None:
+                preload.append(entry['url'][:-len('.js')] + '.wasm')
         html = template.render(title=self.title, workspace=workspace, modules=modules,
                                preload=preload, root=root, base=base, boot=boot)
         return Content(body=html.encode('utf-8'), content_type='text/html; charset=utf-8')
