@@ -112,12 +112,16 @@ def _plan_launches(site, launches, selection, left_out):
         except ExportError as e:
             raise ExportError(f'--launch {spec}: {e}') from None
         for process in plan['processes']:  # the ament index lists the exported packages only
-            env = process.get('env') or {}
-            if env.get(AMENT_PREFIX_PATH) and left_out:
-                env[AMENT_PREFIX_PATH] = ':'.join(
-                    p for p in env[AMENT_PREFIX_PATH].split(':') if p not in left_out)
+            _drop_prefixes(process.get('env') or {}, left_out)
         plans.append(plan)
     return plans
+
+
+def _drop_prefixes(env, left_out):
+    """Take the left-out packages' prefixes out of an environment's ``AMENT_PREFIX_PATH``."""
+    if env.get(AMENT_PREFIX_PATH) and left_out:
+        env[AMENT_PREFIX_PATH] = ':'.join(
+            p for p in env[AMENT_PREFIX_PATH].split(':') if p not in left_out)
 
 
 def _selection_text(select, up_to):
@@ -276,10 +280,7 @@ def static_workspace(site, runs, left_out=None, selection=None, python=False):
     workspace = relative_urls(site.workspace())
     if left_out:
         # the ament index of the page's programs lists the exported packages only
-        environment = workspace.get('environment') or {}
-        if environment.get(AMENT_PREFIX_PATH):
-            environment[AMENT_PREFIX_PATH] = ':'.join(
-                p for p in environment[AMENT_PREFIX_PATH].split(':') if p not in left_out)
+        _drop_prefixes(workspace.get('environment') or {}, left_out)
         workspace['left_out'] = {
             'prefixes': left_out,
             'hint': f'the export ({selection}) left out package {{package}}: export with '
