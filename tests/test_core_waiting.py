@@ -50,8 +50,12 @@ def test_deadline_and_liveliness_events_without_timers(platform):
     d = harness.results(run, 'deadline')
     why = harness.explain(run)
     # One message, then silence: the wait wakes by itself at the 50 ms
-    # deadline (its timeout is cut to the next expiry).
-    assert 49 <= float(d['first_event_ms']) < 1000, why
+    # deadline (its timeout is cut to the next expiry). The deadline counts
+    # from the publish, the wait's own time from after it (under load the
+    # wait starts milliseconds later): the lower bound is on the time since
+    # the publish, the upper on the wait.
+    assert 49 <= float(d['taken_ms']), why
+    assert float(d['first_event_ms']) < 1000, why
     # One missed period per 50 ms of silence (more if the machine was slow
     # to run the wait after it woke).
     periods = int(float(d['taken_ms']) // 50)

@@ -81,7 +81,10 @@ def test_python_services_and_clients_talk_to_cpp_ones(install):
     code, out = colcon_wasm(
         'launch', '--install-base', install, '--duration', 40,
         '--python', DATA / 'add_server.py', '--python', DATA / 'add_client.py',
-        DATA / 'services.launch.xml', until=finished('add_client-4'))
+        DATA / 'services.launch.xml',
+        # both clients: the Python one can end before Pyodide's server is up
+        until=lambda out: finished('add_client-4')(out) and
+        finished('add_two_ints_client-2')(out))
     # C++ client -> Python server on /add_two_ints
     assert re.search(r'\[add_server-3\] .*\[py_server\]: Incoming request: a: (\d+) '
                      r'b: \d+', out), out[-6000:]
